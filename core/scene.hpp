@@ -1,0 +1,60 @@
+#pragma once
+// A scene (DESIGN.md §1, §5): geometry, walls, phases, body force, the SPH discretization, the stress
+// components the engine must compute, and the analytic steady solution where one exists.
+// Scenes are registered by name in the registry's "scene" family (core/scenes.cpp).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/params.hpp"
+#include "core/particles.hpp"
+
+namespace closurelab {
+
+enum class WallModel {
+  ZeroVelocity,   // (5.3): wall particles at rest, used as they are in the pair forces
+  GhostVelocity,  // Morris et al. (1997): in a fluid–wall pair the wall particle carries −(d_wall/d_fluid) v_fluid
+};
+
+struct Scene {
+  std::string name;
+  json params;  // the resolved scene parameters, echoed into every output
+
+  // Geometry: box [0, lx) x [0, ly), square lattice of spacing dx (ε'), nx by ny particles.
+  PeriodicBox box;
+  int nx = 0, ny = 0;
+  double dx = 0.0;
+  double eta = 0.0;  // η', the averaging scale; walls are 3η' thick (5.3)
+  bool has_walls = false;
+  double wall_lo = 0.0, wall_hi = 0.0;  // l1, l2 of (5.15)
+  WallModel wall_model = WallModel::ZeroVelocity;
+  double ghost_beta_max = 0.0;
+
+  // Material and forcing (model units).
+  double rho0 = 1.0;
+  std::vector<double> phase_viscosity{1.0};
+  std::function<double(double y)> force_x;  // body force per unit mass along x
+
+  // SPH discretization.
+  std::string smoothing_kernel = "quintic";
+  double h = 0.0;            // smoothing length
+  double sound_speed = 0.0;  // >= 10x the peak velocity
+  double background_pressure = 0.0;
+
+  // What the engine computes: the flow is x-invariant (fields depend on y only) and the stress
+  // components needed (Poiseuille: T_xy only, §5.2).
+  bool x_invariant = true;
+  std::vector<std::string> stress_components{"xy"};
+
+  // The analytic steady velocity v_x(y) where known (empty otherwise), and its peak.
+  std::function<double(double y)> analytic_vx;
+  double analytic_peak = 0.0;
+
+  bool is_wall(double y) const { return has_walls && (y < wall_lo || y > wall_hi); }
+  // Lattice particles: (i + 1/2) dx, (j + 1/2) dx; walls held fixed; mass so that the SPH density is rho0.
+  ParticleSystem make_particles() const;
+  double particle_mass() const;
+  double max_viscosity() const;
+};
+
+}  // namespace closurelab

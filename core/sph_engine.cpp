@@ -1,0 +1,221 @@
+#include "core/sph_engine.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+
+namespace closurelab {
+
+SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
+    : scene_(scene), ps_(particles), w_(SmoothingKernel::from_name(scene.smoothing_kernel, scene.h)) {
+  skin_ = 0.5 * scene.dx;
+  mass_ = scene.particle_mass();
+  const std::size_t n = ps_.size();
+  const double reach = w_.support() + skin_ + scene.dx;
+  std::vector<std::int32_t> walls;
+  for (std::size_t a = 0; a < n; ++a) {
+    if (!ps_.fixed[a]) {
+      moving_.push_back(static_cast<std::int32_t>(a));
+      active_.push_back(static_cast<std::int32_t>(a));
+      continue;
+    }
+    walls.push_back(static_cast<std::int32_t>(a));
+    const double dist = ps_.y[a] < scene.wall_lo ? scene.wall_lo - ps_.y[a] : ps_.y[a] - scene.wall_hi;
+    if (!scene.has_walls || dist <= reach) active_.push_back(static_cast<std::int32_t>(a));
+  }
+  sort_by_cell(ps_, active_, scene_.box, w_.support() + skin_);
+  n_static_.assign(n, 0.0);
+  if (!walls.empty()) {
+    const PairList ww = find_pairs(ps_, walls, scene_.box, w_.support(), [](int, int) { return true; });
+    for (int a : walls) n_static_[a] = w_.w(0.0);
+    for (std::size_t p = 0; p < ww.size(); ++p) {
+      const int a = ww.i[p], b = ww.j[p];
+      const double r = std::hypot(scene_.box.wrap_dx(ps_.x[a] - ps_.x[b]), scene_.box.wrap_dy(ps_.y[a] - ps_.y[b]));
+      n_static_[a] += w_.w(r);
+      n_static_[b] += w_.w(r);
+    }
+  }
+  n_.assign(n, 0.0);
+  ax_.assign(n, 0.0);
+  ay_.assign(n, 0.0);
+  mu_.resize(n);
+  for (std::size_t a = 0; a < n; ++a) {
+    const int ph = ps_.phase[a];
+    if (ph < 0 || ph >= static_cast<int>(scene.phase_viscosity.size()))
+      throw ConfigError("", "particle phase " + std::to_string(ph) + " has no viscosity");
+    mu_[a] = scene.phase_viscosity[ph];
+  }
+  thread_buf_.resize(omp_get_max_threads());
+}
+
+void SphEngine::rebuild_pairs_if_needed() {
+  if (built_) {
+    const double limit2 = 0.25 * skin_ * skin_;
+    bool need = false;
+    for (int a : moving_) {
+      const double dx = scene_.box.wrap_dx(ps_.x[a] - x_built_[a]), dy = scene_.box.wrap_dy(ps_.y[a] - y_built_[a]);
+      if (dx * dx + dy * dy > limit2) {
+        need = true;
+        break;
+      }
+    }
+    if (!need) return;
+  }
+  const auto& fixed = ps_.fixed;
+  pairs_ = find_pairs(ps_, active_, scene_.box, w_.support() + skin_,
+                      [&fixed](int a, int b) { return !(fixed[a] && fixed[b]); });
+  x_built_ = ps_.x;
+  y_built_ = ps_.y;
+  pair_dx_.resize(pairs_.size());
+  pair_dy_.resize(pairs_.size());
+  pair_f_.resize(pairs_.size());
+  built_ = true;
+  ++list_rebuilds_;
+}
+
+void SphEngine::compute_density() {
+  rebuild_pairs_if_needed();
+  const double w0 = w_.w(0.0), rs2 = w_.support() * w_.support();
+  for (int a : active_) n_[a] = ps_.fixed[a] ? n_static_[a] : w0;
+  const std::size_t np = pairs_.size(), n = ps_.size();
+  const int nthreads = static_cast<int>(thread_buf_.size());
+#pragma omp parallel num_threads(nthreads)
+  {
+    const int t = omp_get_thread_num();
+    auto& buf = thread_buf_[t];
+    buf.assign(n, 0.0);
+#pragma omp for schedule(static)
+    for (std::size_t p = 0; p < np; ++p) {
+      const int i = pairs_.i[p], j = pairs_.j[p];
+      const double dx = scene_.box.wrap_dx(ps_.x[i] - ps_.x[j]);
+      const double dy = scene_.box.wrap_dy(ps_.y[i] - ps_.y[j]);
+      const double r2 = dx * dx + dy * dy;
+      pair_dx_[p] = dx;
+      pair_dy_[p] = dy;
+      if (r2 >= rs2) {
+        pair_f_[p] = 0.0;
+        continue;
+      }
+      const double r = std::sqrt(r2);
+      const double wv = w_.w(r);
+      pair_f_[p] = w_.dw(r) / r;
+      buf[i] += wv;
+      buf[j] += wv;
+    }
+  }
+  for (const auto& buf : thread_buf_)
+    for (int a : active_) n_[a] += buf[a];
+  pair_evaluations_ += static_cast<std::int64_t>(np);
+}
+
+double SphEngine::pressure(std::int32_t a) const {
+  const double c = scene_.sound_speed;
+  return c * c * (ps_.mass[a] * n_[a] - scene_.rho0) + scene_.background_pressure;
+}
+
+Vec2 SphEngine::relative_velocity(std::int32_t a, std::int32_t b) const {
+  const bool fa = ps_.fixed[a], fb = ps_.fixed[b];
+  if (scene_.wall_model == WallModel::ZeroVelocity || fa == fb)
+    return {ps_.vx[a] - ps_.vx[b], ps_.vy[a] - ps_.vy[b]};
+  // Ghost velocity: the wall particle moves with −(d_wall / d_fluid) v_fluid, so that the velocity
+  // continued across the wall surface vanishes on it.
+  const int f = fa ? b : a, w = fa ? a : b;
+  const bool lower = ps_.y[w] < scene_.wall_lo;
+  const double d_wall = lower ? scene_.wall_lo - ps_.y[w] : ps_.y[w] - scene_.wall_hi;
+  const double d_fluid = std::max(lower ? ps_.y[f] - scene_.wall_lo : scene_.wall_hi - ps_.y[f], 1e-3 * scene_.dx);
+  const double beta = std::min(scene_.ghost_beta_max, 1.0 + d_wall / d_fluid);
+  const double sign = fa ? -1.0 : 1.0;
+  return {sign * beta * ps_.vx[f], sign * beta * ps_.vy[f]};
+}
+
+void SphEngine::compute_accelerations() {
+  compute_density();
+  const std::size_t np = pairs_.size(), n = ps_.size();
+  std::vector<double> p_over_n2(n, 0.0);
+  for (int a : active_) p_over_n2[a] = pressure(a) / (n_[a] * n_[a]);
+  const int nthreads = static_cast<int>(thread_buf_.size());
+#pragma omp parallel num_threads(nthreads)
+  {
+    const int t = omp_get_thread_num();
+    auto& buf = thread_buf_[t];
+    buf.assign(2 * n, 0.0);
+#pragma omp for schedule(static)
+    for (std::size_t p = 0; p < np; ++p) {
+      const double F = pair_f_[p];
+      if (F == 0.0) continue;
+      const int i = pairs_.i[p], j = pairs_.j[p];
+      const double fp = -(p_over_n2[i] + p_over_n2[j]) * F;  // pressure part of (5.1), along q_i − q_j
+      const double fv = (mu_[i] + mu_[j]) * F / (n_[i] * n_[j]);  // viscous part, along v_i − v_j
+      const Vec2 v = relative_velocity(i, j);
+      const double fx = fp * pair_dx_[p] + fv * v.x(), fy = fp * pair_dy_[p] + fv * v.y();
+      buf[i] += fx;
+      buf[n + i] += fy;
+      buf[j] -= fx;
+      buf[n + j] -= fy;
+    }
+  }
+  for (int a : moving_) {
+    double fx = 0.0, fy = 0.0;
+    for (const auto& buf : thread_buf_) fx += buf[a], fy += buf[n + a];
+    ax_[a] = fx / ps_.mass[a] + scene_.force_x(ps_.y[a]);
+    ay_[a] = fy / ps_.mass[a];
+  }
+}
+
+void SphEngine::step(double dt) {
+  if (!built_) compute_accelerations();
+  const std::size_t m = moving_.size();
+  std::vector<double> vhx(m), vhy(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    const int a = moving_[k];
+    vhx[k] = ps_.vx[a] + 0.5 * dt * ax_[a];
+    vhy[k] = ps_.vy[a] + 0.5 * dt * ay_[a];
+    double x = ps_.x[a] + dt * vhx[k];
+    if (scene_.box.periodic_x) x -= scene_.box.lx * std::floor(x / scene_.box.lx);
+    double y = ps_.y[a] + dt * vhy[k];
+    if (scene_.box.periodic_y) y -= scene_.box.ly * std::floor(y / scene_.box.ly);
+    ps_.x[a] = x;
+    ps_.y[a] = y;
+    ps_.vx[a] = vhx[k] + 0.5 * dt * ax_[a];  // predicted velocity for the viscous force
+    ps_.vy[a] = vhy[k] + 0.5 * dt * ay_[a];
+  }
+  compute_accelerations();
+  for (std::size_t k = 0; k < m; ++k) {
+    const int a = moving_[k];
+    ps_.vx[a] = vhx[k] + 0.5 * dt * ax_[a];
+    ps_.vy[a] = vhy[k] + 0.5 * dt * ay_[a];
+  }
+}
+
+double SphEngine::max_speed() const {
+  double v2 = 0.0;
+  for (int a : moving_) v2 = std::max(v2, ps_.vx[a] * ps_.vx[a] + ps_.vy[a] * ps_.vy[a]);
+  return std::sqrt(v2);
+}
+
+double SphEngine::time_step(double kappa) const {
+  const double dx = scene_.dx;
+  return kappa * std::min(dx / (scene_.sound_speed + max_speed()), scene_.rho0 * dx * dx / scene_.max_viscosity());
+}
+
+std::vector<PairForce> SphEngine::pair_forces() {
+  compute_density();
+  std::vector<PairForce> out;
+  out.reserve(pairs_.size());
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const double F = pair_f_[p];
+    if (F == 0.0) continue;
+    const int i = pairs_.i[p], j = pairs_.j[p];
+    const double fp = -(pressure(i) / (n_[i] * n_[i]) + pressure(j) / (n_[j] * n_[j])) * F;
+    const double fv = (mu_[i] + mu_[j]) * F / (n_[i] * n_[j]);
+    const Vec2 v = relative_velocity(i, j);
+    out.push_back({i, j, Vec2(-pair_dx_[p], -pair_dy_[p]),
+                   Vec2(fp * pair_dx_[p] + fv * v.x(), fp * pair_dy_[p] + fv * v.y())});
+  }
+  return out;
+}
+
+}  // namespace closurelab

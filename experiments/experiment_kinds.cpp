@@ -1,0 +1,25 @@
+#include "core/errors.hpp"
+#include "experiments/experiment_kind.hpp"
+#include "experiments/sph_validation.hpp"
+
+namespace closurelab {
+
+const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds() {
+  static const std::vector<std::unique_ptr<ExperimentKind>> kinds = [] {
+    std::vector<std::unique_ptr<ExperimentKind>> k;
+    k.push_back(make_sph_validation_experiment());
+    return k;
+  }();
+  return kinds;
+}
+
+const ExperimentKind& find_experiment_kind(const std::string& name, const std::string& path) {
+  std::string known;
+  for (const auto& k : experiment_kinds()) {
+    if (k->name() == name) return *k;
+    known += (known.empty() ? "" : ", ") + k->name();
+  }
+  throw ConfigError(path, "unknown experiment kind '" + name + "'; known: " + known);
+}
+
+}  // namespace closurelab

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/gsl_support.hpp"
+
 namespace closurelab {
 
 double poiseuille_velocity(double y, double l1, double l2, double rho, double g, double mu) {
@@ -37,6 +39,7 @@ double average_by_quadrature(const std::function<double(double)>& f, const std::
                              double radius, double y, double lo, double hi) {
   const double a = std::max(lo, y - radius), b = std::min(hi, y + radius);
   if (!(b > a)) return 0.0;
+  gsl_errors_as_status();
   struct P {
     const std::function<double(double)>* f;
     const std::function<double(double)>* phi;

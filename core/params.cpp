@@ -1,6 +1,5 @@
 #include "core/params.hpp"
 
-#include <gsl/gsl_errno.h>
 
 #include <cmath>
 #include <fstream>
@@ -10,13 +9,6 @@
 
 namespace closurelab {
 
-namespace {
-// GSL aborts on errors by default; closurelab checks status codes itself.
-const bool gsl_handler_off = [] {
-  gsl_set_error_handler_off();
-  return true;
-}();
-}  // namespace
 
 ParamSpec number_param(std::string name, json def, std::string description, std::optional<double> min,
                        std::optional<double> max, bool exclusive_min) {

@@ -49,6 +49,11 @@ SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
     mu_[a] = scene.phase_viscosity[ph];
   }
   thread_buf_.resize(omp_get_max_threads());
+  // The ghost-velocity wall multiplies the viscous coupling of a fluid–wall pair by β <= 1 + d_wall/d_fluid;
+  // with the wall between lattice rows, d_fluid >= ε'/2 and d_wall < support.
+  viscous_stiffening_ = scene.wall_model == WallModel::GhostVelocity
+                            ? std::min(scene.ghost_beta_max, 1.0 + w_.support() / (0.5 * scene.dx))
+                            : 1.0;
 }
 
 void SphEngine::rebuild_pairs_if_needed() {
@@ -198,7 +203,8 @@ double SphEngine::max_speed() const {
 
 double SphEngine::time_step(double kappa) const {
   const double dx = scene_.dx;
-  return kappa * std::min(dx / (scene_.sound_speed + max_speed()), scene_.rho0 * dx * dx / scene_.max_viscosity());
+  return kappa * std::min(dx / (scene_.sound_speed + max_speed()),
+                          scene_.rho0 * dx * dx / (scene_.max_viscosity() * viscous_stiffening_));
 }
 
 std::vector<PairForce> SphEngine::pair_forces() {

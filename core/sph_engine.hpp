@@ -30,8 +30,9 @@ class SphEngine {
   // One velocity-Verlet step (kick–drift–kick; the second force evaluation uses the predicted velocity,
   // since the viscous force depends on velocities). One force evaluation per step.
   void step(double dt);
-  // (5.21)–(5.22) with Δ = ε': κ min(ε' / (c + max|v|), ρ ε'² / μ_max). The signal speed of a weakly
-  // compressible model is the sound speed plus the flow speed.
+  // (5.21)–(5.22) with Δ = ε': κ min(ε' / (c + max|v|), ρ ε'² / (μ_max β)). The signal speed of a weakly
+  // compressible model is the sound speed plus the flow speed; β is the ghost-velocity wall's stiffening of
+  // the fluid–wall viscous coupling (1 for zero-velocity walls), without which κ = 0.25 is unstable.
   double time_step(double kappa) const;
 
   // Pair forces at the current state (densities recomputed), for the averaging operators.
@@ -56,7 +57,7 @@ class SphEngine {
   const Scene& scene_;
   ParticleSystem& ps_;
   SmoothingKernel w_;
-  double skin_, mass_;
+  double skin_, mass_, viscous_stiffening_ = 1.0;
   std::vector<std::int32_t> active_, moving_;
   std::vector<double> n_static_;  // wall–wall part of wall densities (constant: walls do not move)
   std::vector<double> n_, ax_, ay_, x_built_, y_built_;

@@ -32,14 +32,17 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
   res.total_particles = static_cast<std::int64_t>(ps.size());
   res.moving_particles = static_cast<std::int64_t>(engine.moving().size());
   engine.compute_accelerations();
-  std::vector<double> reference(ps.size(), 0.0);
+  const auto observe = [&]() -> Eigen::VectorXd {
+    if (opt.observable) return opt.observable(ps);
+    Eigen::VectorXd v(engine.moving().size());
+    for (std::size_t k = 0; k < engine.moving().size(); ++k) v[k] = ps.vx[engine.moving()[k]];
+    return v;
+  };
+  Eigen::VectorXd reference = observe();
   auto relative_change = [&]() {
-    double diff = 0.0, mag = 0.0;
-    for (int a : engine.moving()) {
-      diff = std::max(diff, std::abs(ps.vx[a] - reference[a]));
-      mag = std::max(mag, std::abs(ps.vx[a]));
-      reference[a] = ps.vx[a];
-    }
+    const Eigen::VectorXd now = observe();
+    const double mag = now.cwiseAbs().maxCoeff(), diff = (now - reference).cwiseAbs().maxCoeff();
+    reference = now;
     return mag > 0.0 ? diff / mag : (diff > 0.0 ? 1.0 : 0.0);
   };
   res.status = "no_convergence";

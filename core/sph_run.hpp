@@ -1,6 +1,7 @@
 #pragma once
 // Driving the direct SPH model to a target time or to steady state (§7: the solution changes by less
 // than 0.001 % over 1000 steps), with progress reports and a non-finite check.
+#include <Eigen/Core>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -20,6 +21,10 @@ struct SphRunOptions {
   std::int64_t max_steps = 100000000;
   double progress_seconds = 10.0;
   std::function<void(const std::string&)> progress;  // may be empty
+  // The field whose change decides steady state; default: the x-velocities of the moving particles.
+  // Lattice particles sliding past each other carry a persistent ~1e-4 velocity ripple, so experiments
+  // pass the averaged (mesoscale) velocity here, the quantity they compare.
+  std::function<Eigen::VectorXd(const ParticleSystem&)> observable;
 };
 
 struct SphRunResult {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/gsl_support.hpp"
 #include "strategies/kernels/gaussian_segment.hpp"
 
 namespace closurelab {
@@ -38,6 +39,7 @@ double CutoffGaussianKernel::factor_symbol(double xi) const {
     const CutoffGaussianKernel* k;
     double xi;
   } p{this, xi};
+  gsl_errors_as_status();
   gsl_function f;
   f.function = [](double t, void* v) {
     auto* q = static_cast<P*>(v);

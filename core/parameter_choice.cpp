@@ -1,0 +1,140 @@
+#include "core/parameter_choice.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/errors.hpp"
+
+namespace closurelab {
+
+ParameterRule parse_parameter_rule(const std::string& s, const std::string& path) {
+  if (s == "fixed") return ParameterRule::fixed;
+  if (s == "discrepancy") return ParameterRule::discrepancy;
+  if (s == "gcv") return ParameterRule::gcv;
+  if (s == "lcurve") return ParameterRule::lcurve;
+  throw ConfigError(path, "unknown parameter rule '" + s + "'; known: fixed, discrepancy, gcv, lcurve");
+}
+std::string to_string(ParameterRule r) {
+  switch (r) {
+    case ParameterRule::fixed: return "fixed";
+    case ParameterRule::discrepancy: return "discrepancy";
+    case ParameterRule::gcv: return "gcv";
+    case ParameterRule::lcurve: return "lcurve";
+  }
+  return "?";
+}
+
+std::vector<double> log_grid_descending(double hi, double lo, int count) {
+  std::vector<double> g;
+  if (count <= 1) return {hi};
+  const double a = std::log(hi), c = std::log(lo);
+  for (int i = 0; i < count; ++i) g.push_back(std::exp(a + (c - a) * i / (count - 1)));
+  return g;
+}
+
+int lcurve_corner(const std::vector<RecordedPoint>& p) {
+  if (p.size() < 3) return p.empty() ? -1 : static_cast<int>(p.size()) - 1;
+  // Points in log–log; the discrete curvature at i is 1/R of the circle through i−1, i, i+1 (signed so that a
+  // corner of the "L" — convex towards the origin — is positive).
+  auto pt = [&](size_t i) {
+    const double tiny = 1e-300;
+    return Eigen::Vector2d(std::log(std::max(p[i].residual_norm, tiny)), std::log(std::max(p[i].solution_norm, tiny)));
+  };
+  int best = -1;
+  double best_k = -std::numeric_limits<double>::infinity();
+  for (size_t i = 1; i + 1 < p.size(); ++i) {
+    const Eigen::Vector2d a = pt(i - 1), b = pt(i), c = pt(i + 1);
+    const double ab = (b - a).norm(), bc = (c - b).norm(), ca = (a - c).norm();
+    if (ab < 1e-14 || bc < 1e-14 || ca < 1e-14) continue;
+    const double cross = (b - a).x() * (c - b).y() - (b - a).y() * (c - b).x();
+    const double k = -2.0 * cross / (ab * bc * ca);  // walking left then up: a corner turns clockwise
+    if (std::isfinite(k) && k > best_k) {
+      best_k = k;
+      best = static_cast<int>(i);
+    }
+  }
+  return best < 0 ? static_cast<int>(p.size()) / 2 : best;
+}
+
+namespace {
+void take(DeconvolutionResult& r, const ScanPoint& p) {
+  r.x = p.solution();
+  r.stats.residual_norm = p.residual_norm;
+  r.stats.solution_norm = p.solution_norm;
+  r.stats.chosen_parameter = p.parameter;
+  r.cost.matvecs = std::max(r.cost.matvecs, p.matvecs);
+  if (!p.issue.empty()) {
+    r.status = DeconvolutionStatus::numerical_issue;
+    r.stats.message = p.issue;
+  }
+}
+}  // namespace
+
+DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& b, ParameterRule rule,
+                                   double noise_level, double safety) {
+  DeconvolutionResult r;
+  r.stats.rule = to_string(rule);
+  int visited = 0;
+  bool taken = false;
+  if (rule == ParameterRule::discrepancy) {
+    const double target = safety * noise_level;
+    d.scan(b, [&](const ScanPoint& p) {
+      ++visited;
+      const bool met = p.residual_norm <= target;
+      if (met || p.last || !p.issue.empty()) {
+        take(r, p);
+        taken = true;
+        if (!met && p.issue.empty()) {
+          r.status = DeconvolutionStatus::no_convergence;
+          r.stats.message = "discrepancy principle not met: residual " + std::to_string(p.residual_norm) +
+                            " > tau*delta = " + std::to_string(target) + " at the least regularized member";
+        }
+        return false;
+      }
+      return true;
+    });
+    if (!taken) throw NumericalError(d.name() + ": the parameter scan ended without a last member");
+    r.stats.iterations = visited;
+    return r;
+  }
+  std::vector<RecordedPoint> pts;
+  long total_matvecs = 0;
+  std::string issue;
+  d.scan(b, [&](const ScanPoint& p) {
+    pts.push_back(RecordedPoint{p.parameter, p.residual_norm, p.solution_norm, p.gcv});
+    total_matvecs = p.matvecs;
+    if (!p.issue.empty()) issue = p.issue;
+    return p.issue.empty();
+  });
+  if (pts.empty()) throw NumericalError(d.name() + ": the parameter scan visited no solution");
+  int pick = -1;
+  if (rule == ParameterRule::gcv) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < pts.size(); ++i)
+      if (pts[i].gcv >= 0 && std::isfinite(pts[i].gcv) && pts[i].gcv < best) {
+        best = pts[i].gcv;
+        pick = static_cast<int>(i);
+      }
+    if (pick < 0) throw ConfigError("/rule", d.name() + " cannot evaluate the GCV function");
+  } else {
+    pick = lcurve_corner(pts);
+  }
+  int index = 0;
+  d.scan(b, [&](const ScanPoint& p) {
+    if (index++ < pick) return true;
+    take(r, p);
+    taken = true;
+    return false;
+  });
+  if (!taken) throw NumericalError(d.name() + ": the second scan did not reach the chosen member");
+  r.cost.matvecs += total_matvecs;
+  if (!issue.empty()) {
+    r.status = DeconvolutionStatus::numerical_issue;
+    r.stats.message = issue;
+  }
+  r.stats.iterations = static_cast<int>(pts.size());
+  return r;
+}
+
+}  // namespace closurelab

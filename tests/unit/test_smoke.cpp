@@ -1,5 +1,0 @@
-#include <gtest/gtest.h>
-
-#include "core/registry.hpp"
-
-TEST(Registry, HasBuiltins) { EXPECT_TRUE(closurelab::builtin_registry().kernels.contains("gaussian")); }

@@ -78,23 +78,45 @@ DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& 
   int visited = 0;
   bool taken = false;
   if (rule == ParameterRule::discrepancy) {
+    // The first member with ‖r‖ <= τδ. If none qualifies, the member of smallest residual (the last one for
+    // methods whose residual decreases monotonically; CG's residual does not).
     const double target = safety * noise_level;
+    int best_index = -1;
+    double best_residual = std::numeric_limits<double>::infinity();
+    long total_matvecs = 0;
     d.scan(b, [&](const ScanPoint& p) {
-      ++visited;
       const bool met = p.residual_norm <= target;
-      if (met || p.last || !p.issue.empty()) {
+      total_matvecs = p.matvecs;
+      if (p.residual_norm < best_residual) {
+        best_residual = p.residual_norm;
+        best_index = visited;
+      }
+      ++visited;
+      if (met || !p.issue.empty() || (p.last && best_index == visited - 1)) {
         take(r, p);
         taken = true;
-        if (!met && p.issue.empty()) {
-          r.status = DeconvolutionStatus::no_convergence;
-          r.stats.message = "discrepancy principle not met: residual " + std::to_string(p.residual_norm) +
-                            " > tau*delta = " + std::to_string(target) + " at the least regularized member";
-        }
+        if (!met && p.issue.empty()) best_index = -1;  // taken as the smallest-residual member
         return false;
       }
-      return true;
+      return !p.last;
     });
-    if (!taken) throw NumericalError(d.name() + ": the parameter scan ended without a last member");
+    if (!taken) {
+      if (best_index < 0) throw NumericalError(d.name() + ": the parameter scan visited no solution");
+      int index = 0;
+      d.scan(b, [&](const ScanPoint& p) {
+        if (index++ < best_index) return true;
+        take(r, p);
+        taken = true;
+        return false;
+      });
+      r.cost.matvecs += total_matvecs;
+      best_index = -1;
+    }
+    if (r.status == DeconvolutionStatus::converged && !(r.stats.residual_norm <= target)) {
+      r.status = DeconvolutionStatus::no_convergence;
+      r.stats.message = "discrepancy principle not met: smallest residual " + std::to_string(r.stats.residual_norm) +
+                        " > tau*delta = " + std::to_string(target) + "; returned the smallest-residual member";
+    }
     r.stats.iterations = visited;
     return r;
   }

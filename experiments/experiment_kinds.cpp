@@ -1,6 +1,7 @@
 #include "core/errors.hpp"
 #include "experiments/experiment_kind.hpp"
 #include "experiments/sph_validation.hpp"
+#include "experiments/stability_experiment.hpp"
 
 namespace closurelab {
 
@@ -8,6 +9,7 @@ const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds() {
   static const std::vector<std::unique_ptr<ExperimentKind>> kinds = [] {
     std::vector<std::unique_ptr<ExperimentKind>> k;
     k.push_back(make_sph_validation_experiment());
+    k.push_back(make_stability_experiment());
     return k;
   }();
   return kinds;

@@ -1,0 +1,95 @@
+// Relaxed Landweber iteration x_{k+1} = x_k + ω Aᵀ(b − A x_k), x_0 = 0, for any (also rectangular) A.
+// It converges for 0 < ω < 2/‖A‖₂²; the default ω = 1/‖A‖₂² is safe. The iteration count is the
+// regularization parameter (stopped by the discrepancy principle or a fixed count).
+#include "strategies/deconvolution/deconvolver_base.hpp"
+#include "strategies/deconvolution/deconvolvers.hpp"
+
+namespace closurelab {
+namespace {
+
+class LandweberRelaxed : public DeconvolverBase {
+ public:
+  LandweberRelaxed(RuleConfig rule, double omega, int iterations, int max_iterations)
+      : DeconvolverBase("landweber_relaxed", rule, "iterations"),
+        omega_given_(omega), iterations_(iterations), max_iterations_(max_iterations) {}
+
+ protected:
+  void do_setup(const ForwardOperator& a) override {
+    const double norm = a.norm2_estimate();
+    if (!(norm > 0)) throw ConfigError("", "landweber_relaxed: the operator is zero");
+    if (omega_given_ > 0) {
+      if (omega_given_ * norm * norm >= 2.0)
+        throw ConfigError("/omega", "omega = " + std::to_string(omega_given_) + " >= 2/||A||^2 = " +
+                                        std::to_string(2.0 / (norm * norm)) + ": the iteration would diverge");
+      omega_ = omega_given_;
+    } else {
+      omega_ = 1.0 / (norm * norm);
+    }
+  }
+
+  DeconvolutionResult solve_fixed(const Eigen::VectorXd& b) const override {
+    DeconvolutionResult r;
+    run(b, iterations_, [&](const ScanPoint& p) {
+      if (!p.last && p.issue.empty()) return true;
+      r.x = p.solution();
+      r.stats.residual_norm = p.residual_norm;
+      r.stats.solution_norm = p.solution_norm;
+      r.stats.chosen_parameter = p.parameter;
+      r.stats.iterations = static_cast<int>(p.parameter);
+      r.cost.matvecs = p.matvecs;
+      if (!p.issue.empty()) {
+        r.status = DeconvolutionStatus::numerical_issue;
+        r.stats.message = p.issue;
+      }
+      return false;
+    });
+    return r;
+  }
+
+  void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const override { run(b, max_iterations_, visit); }
+
+ private:
+  void run(const Eigen::VectorXd& b, int count, const ScanVisitor& visit) const {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(op().cols());
+    Eigen::VectorXd r = b;
+    double previous = b.norm();
+    for (int k = 0; k <= count; ++k) {
+      if (k > 0) {
+        x += omega_ * op().apply_transpose(r);
+        r = b - op().apply(x);
+      }
+      ScanPoint p;
+      p.parameter = k;
+      p.residual_norm = r.norm();
+      p.solution_norm = x.norm();
+      p.matvecs = 2L * k;
+      p.last = k == count;
+      if (!(p.residual_norm <= (1.0 + 1e-10) * previous)) {
+        p.issue = "landweber_relaxed: the residual grows at iteration " + std::to_string(k) +
+                  " (omega too large for this operator)";
+        p.last = true;
+      }
+      p.solution = [&x] { return x; };
+      if (!visit(p) || p.last) return;
+      previous = p.residual_norm;
+    }
+  }
+  double omega_given_, omega_ = 0.0;
+  int iterations_, max_iterations_;
+};
+
+}  // namespace
+
+ParamSchema landweber_relaxed_schema() {
+  return {number_param("omega", 0.0, "relaxation omega; 0 = 1/||A||_2^2 (must be < 2/||A||_2^2)", 0.0),
+          integer_param("iterations", 50, "iteration count (rule fixed)", 0, 10000000),
+          integer_param("max_iterations", 5000, "largest count tried by the discrepancy/lcurve rules", 0, 10000000),
+          rule_param({"fixed", "discrepancy", "lcurve"}, "fixed"), safety_param()};
+}
+
+std::unique_ptr<Deconvolver> make_landweber_relaxed(const json& p) {
+  return std::make_unique<LandweberRelaxed>(RuleConfig::from_json(p), p.at("omega").get<double>(),
+                                            p.at("iterations").get<int>(), p.at("max_iterations").get<int>());
+}
+
+}  // namespace closurelab

@@ -1,0 +1,93 @@
+// Landweber deconvolution of order n exactly as the paper writes it:
+//   x_n = Σ_{k=0}^{n} (I − A)^k b                                   (4.3), discretized as (4.9).
+// Implemented by the recursion u_0 = b, u_{k+1} = u_k − A u_k, x_{n} = Σ_{k<=n} u_k; the residual of x_n is
+// b − A x_n = (I − A)^{n+1} b = u_{n+1}, so each order costs one product with A and its residual is free.
+// The series converges only when the spectrum of A lies in (0, 2); a sampled truncated Gaussian can have
+// negative eigenvalues (DESIGN.md §6), which show as a growing ‖u_k‖: the scan reports that as an issue.
+#include "strategies/deconvolution/deconvolver_base.hpp"
+#include "strategies/deconvolution/deconvolvers.hpp"
+
+namespace closurelab {
+namespace {
+
+constexpr double growth_tolerance = 1e-10;
+
+class LandweberSeries : public DeconvolverBase {
+ public:
+  LandweberSeries(RuleConfig rule, int order, int max_order)
+      : DeconvolverBase("landweber", rule, "order"), order_(order), max_order_(max_order) {}
+
+ protected:
+  void do_setup(const ForwardOperator& a) override {
+    if (!a.is_square())
+      throw ConfigError("", "landweber (the series (4.3)/(4.9)) needs a square operator (coarse_coarse or fine_fine); "
+                            "got " + std::to_string(a.rows()) + "x" + std::to_string(a.cols()) +
+                            "; use landweber_relaxed or cgls");
+  }
+
+  DeconvolutionResult solve_fixed(const Eigen::VectorXd& b) const override {
+    DeconvolutionResult r;
+    bool stopped = false;
+    do_scan_to(b, order_, [&](const ScanPoint& p) {
+      if (p.parameter < order_ && p.issue.empty()) return true;
+      r.x = p.solution();
+      r.stats.residual_norm = p.residual_norm;
+      r.stats.solution_norm = p.solution_norm;
+      r.stats.chosen_parameter = p.parameter;
+      r.stats.iterations = static_cast<int>(p.parameter);
+      r.cost.matvecs = p.matvecs;
+      if (!p.issue.empty()) {
+        r.status = DeconvolutionStatus::numerical_issue;
+        r.stats.message = p.issue;
+      }
+      stopped = true;
+      return false;
+    });
+    if (!stopped) throw NumericalError("landweber: series did not reach the requested order");
+    return r;
+  }
+
+  void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const override { do_scan_to(b, max_order_, visit); }
+
+ private:
+  void do_scan_to(const Eigen::VectorXd& b, int max_order, const ScanVisitor& visit) const {
+    Eigen::VectorXd x = b, u = b;
+    double previous = b.norm();
+    for (int n = 0; n <= max_order; ++n) {
+      Eigen::VectorXd r = u - op().apply(u);  // u_{n+1} = (I − A) u_n = b − A x_n
+      ScanPoint p;
+      p.parameter = n;
+      p.residual_norm = r.norm();
+      p.solution_norm = x.norm();
+      p.matvecs = n + 1;
+      p.last = n == max_order;
+      if (!(p.residual_norm <= (1.0 + growth_tolerance) * previous)) {
+        p.issue = "landweber: growing mode at order " + std::to_string(n) + " (||(I-A)^k b|| grows from " +
+                  std::to_string(previous) + " to " + std::to_string(p.residual_norm) +
+                  "): A has eigenvalues outside (0, 2), e.g. a truncated sampled kernel";
+        p.last = true;
+      }
+      p.solution = [&x] { return x; };
+      if (!visit(p) || p.last) return;
+      previous = p.residual_norm;
+      x += r;
+      u = std::move(r);
+    }
+  }
+  int order_, max_order_;
+};
+
+}  // namespace
+
+ParamSchema landweber_series_schema() {
+  return {integer_param("order", 1, "series order n of (4.3)/(4.9) (rule fixed)", 0, 100000),
+          integer_param("max_order", 500, "largest order tried by the discrepancy/lcurve rules", 0, 1000000),
+          rule_param({"fixed", "discrepancy", "lcurve"}, "fixed"), safety_param()};
+}
+
+std::unique_ptr<Deconvolver> make_landweber_series(const json& p) {
+  return std::make_unique<LandweberSeries>(RuleConfig::from_json(p), p.at("order").get<int>(),
+                                           p.at("max_order").get<int>());
+}
+
+}  // namespace closurelab

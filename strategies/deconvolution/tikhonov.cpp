@@ -1,0 +1,280 @@
+// Tikhonov regularization (4.7) in two forms, with C = I or C = LᵀL for a first/second difference L:
+//   paper          (A + α C) x = b                 (4.7) as written (square A);
+//   least_squares  (AᵀA + α C) x = Aᵀ b            the normal equations of min ‖Ax − b‖² + α‖Lx‖².
+// Backends: spectral (C = I: SVD, or the symmetric eigendecomposition for the paper form; Kronecker operators
+// decompose their factors only), dense (Eigen Cholesky/LU per α) and sparse (CHOLMOD: symbolic analysis once,
+// numeric factorization per α). Difference operators follow the solution mesh (1D, or the Kronecker sum
+// [I ⊗ L_x; L_y ⊗ I] on a tensor mesh); they are not periodic.
+#include <Eigen/CholmodSupport>
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/SparseLU>
+#include <memory>
+#include <unsupported/Eigen/KroneckerProduct>
+
+#include "core/spectral_basis.hpp"
+#include "strategies/deconvolution/deconvolver_base.hpp"
+#include "strategies/deconvolution/deconvolvers.hpp"
+
+namespace closurelab {
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+SpMat difference_1d(int n, int order) {
+  SpMat d(std::max(n - order, 0), n);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i + order < n; ++i) {
+    if (order == 1) {
+      t.emplace_back(i, i, -1.0);
+      t.emplace_back(i, i + 1, 1.0);
+    } else {
+      t.emplace_back(i, i, 1.0);
+      t.emplace_back(i, i + 1, -2.0);
+      t.emplace_back(i, i + 2, 1.0);
+    }
+  }
+  d.setFromTriplets(t.begin(), t.end());
+  return d;
+}
+
+// C = LᵀL (C = I for the identity).
+SpMat regularizer_matrix(const ForwardOperator& a, int order) {
+  const int n = static_cast<int>(a.cols());
+  SpMat identity(n, n);
+  identity.setIdentity();
+  if (order == 0) return identity;
+  int nx = n, ny = 1;
+  if (a.dimension == 2 && a.solution_mesh) {
+    nx = a.solution_mesh->nx();
+    ny = a.solution_mesh->ny();
+  }
+  SpMat l;
+  if (ny == 1) {
+    l = difference_1d(nx, order);
+  } else {
+    SpMat ix(nx, nx), iy(ny, ny);
+    ix.setIdentity();
+    iy.setIdentity();
+    const SpMat lx = Eigen::kroneckerProduct(iy, difference_1d(nx, order)).eval();
+    const SpMat ly = Eigen::kroneckerProduct(difference_1d(ny, order), ix).eval();
+    l.resize(lx.rows() + ly.rows(), n);
+    std::vector<Eigen::Triplet<double>> t;
+    for (int k = 0; k < lx.outerSize(); ++k)
+      for (SpMat::InnerIterator it(lx, k); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+    for (int k = 0; k < ly.outerSize(); ++k)
+      for (SpMat::InnerIterator it(ly, k); it; ++it) t.emplace_back(lx.rows() + it.row(), it.col(), it.value());
+    l.setFromTriplets(t.begin(), t.end());
+  }
+  return SpMat(l.transpose() * l);
+}
+
+class Tikhonov : public DeconvolverBase {
+ public:
+  enum class Backend { automatic, spectral, dense, sparse };
+  Tikhonov(RuleConfig rule, bool paper, int order, double alpha, Backend backend, double alpha_max, double alpha_min,
+           int alpha_count)
+      : DeconvolverBase("tikhonov", rule, "alpha"), paper_(paper), order_(order), alpha_(alpha), requested_(backend),
+        alpha_max_(alpha_max), alpha_min_(alpha_min), alpha_count_(alpha_count) {}
+
+ protected:
+  void do_setup(const ForwardOperator& a) override {
+    if (paper_ && !a.is_square())
+      throw ConfigError("/form", "the paper form (A + alpha C) x = b needs a square A; got " + std::to_string(a.rows()) +
+                                     "x" + std::to_string(a.cols()) + " (use form least_squares)");
+    if (alpha_min_ >= alpha_max_) throw ConfigError("/alpha_min", "alpha_min must be below alpha_max");
+    symmetric_ = a.is_symmetric(1e-10);
+    backend_ = requested_;
+    if (backend_ == Backend::automatic) {
+      if (order_ == 0 && a.storage() != OperatorStorage::sparse && (!paper_ || symmetric_))
+        backend_ = Backend::spectral;
+      else
+        backend_ = a.storage() == OperatorStorage::sparse ? Backend::sparse : Backend::dense;
+    }
+    if (backend_ == Backend::spectral && order_ != 0)
+      throw ConfigError("/backend", "the spectral backend needs regularizer identity");
+    if (backend_ != Backend::spectral && rule().rule == ParameterRule::gcv)
+      throw ConfigError("/rule", "gcv needs the spectral backend (regularizer identity)");
+    if (backend_ == Backend::spectral) {
+      if (paper_ && !symmetric_)
+        throw ConfigError("/backend", "the spectral paper form needs a symmetric A (use backend dense)");
+      basis_ = SpectralBasis(a, paper_ ? SpectralBasis::Kind::symmetric_eigen : SpectralBasis::Kind::svd);
+      const double smax = std::abs(basis_.sigma()(basis_.order()(0)));
+      scale_ = paper_ ? smax : smax * smax;
+      return;
+    }
+    const double norm = a.norm2_estimate();
+    scale_ = paper_ ? norm : norm * norm;
+    c_ = regularizer_matrix(a, order_);
+    if (backend_ == Backend::dense) {
+      const Eigen::MatrixXd ad = a.to_dense();
+      g_dense_ = paper_ ? ad : Eigen::MatrixXd(ad.transpose() * ad);
+      c_dense_ = Eigen::MatrixXd(c_);
+    } else {
+      const SpMat as = a.to_sparse();
+      g_sparse_ = paper_ ? as : SpMat(as.transpose() * as);
+      if (!paper_ || symmetric_) {
+        cholmod_ = std::make_unique<Eigen::CholmodDecomposition<SpMat>>();
+        cholmod_->analyzePattern(SpMat(g_sparse_ + c_));
+      }
+    }
+  }
+
+  DeconvolutionResult solve_fixed(const Eigen::VectorXd& b) const override {
+    DeconvolutionResult r;
+    if (backend_ == Backend::spectral) {
+      const Eigen::VectorXd beta = basis_.coefficients(b);
+      std::string issue;
+      r.x = spectral_solution(beta, alpha_, issue);
+      r.cost.matvecs = 2;
+      set_issue(r, issue);
+    } else {
+      std::string issue;
+      r.x = factored_solution(b, alpha_, issue);
+      r.cost.matvecs = paper_ ? 0 : 1;
+      set_issue(r, issue);
+    }
+    finish_fixed(r, b, alpha_);
+    return r;
+  }
+
+  void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const override {
+    const auto grid = log_grid_descending(alpha_max_ * scale_, alpha_min_ * scale_, alpha_count_);
+    const double m = static_cast<double>(op().rows());
+    Eigen::VectorXd beta;
+    double b_perp2 = 0.0;
+    if (backend_ == Backend::spectral) {
+      beta = basis_.coefficients(b);
+      b_perp2 = std::max(b.squaredNorm() - beta.squaredNorm(), 0.0);
+    }
+    long matvecs = backend_ == Backend::spectral ? 1 : 0;
+    for (size_t g = 0; g < grid.size(); ++g) {
+      const double alpha = grid[g];
+      ScanPoint p;
+      p.parameter = alpha;
+      p.last = g + 1 == grid.size();
+      Eigen::VectorXd x;
+      if (backend_ == Backend::spectral) {
+        // Filter factors f_i = σ_i φ_i; residual Σ((1 − f_i) β_i)² + ‖b_⊥‖²; GCV ‖r‖²/(m − Σ f_i)².
+        double r2 = b_perp2, x2 = 0.0, trace = 0.0;
+        for (Eigen::Index i = 0; i < beta.size(); ++i) {
+          const double s = basis_.sigma()(i), phi = filter(s, alpha);
+          r2 += (1.0 - s * phi) * (1.0 - s * phi) * beta(i) * beta(i);
+          x2 += phi * phi * beta(i) * beta(i);
+          trace += s * phi;
+        }
+        p.residual_norm = std::sqrt(r2);
+        p.solution_norm = std::sqrt(x2);
+        p.gcv = r2 / ((m - trace) * (m - trace));
+        if (paper_ && basis_.sigma().minCoeff() + alpha <= 1e-14 * scale_)
+          p.issue = indefinite_message(alpha);
+        p.matvecs = matvecs + 1;
+        p.solution = [this, &beta, alpha] {
+          std::string ignored;
+          return spectral_solution(beta, alpha, ignored);
+        };
+      } else {
+        x = factored_solution(b, alpha, p.issue);
+        matvecs += (paper_ ? 0 : 1) + 1;
+        p.residual_norm = (b - op().apply(x)).norm();
+        p.solution_norm = x.norm();
+        p.matvecs = matvecs;
+        p.solution = [&x] { return x; };
+      }
+      if (!p.issue.empty()) p.last = true;
+      if (!visit(p) || p.last) return;
+    }
+  }
+
+ private:
+  double filter(double s, double alpha) const { return paper_ ? 1.0 / (s + alpha) : s / (s * s + alpha); }
+  std::string indefinite_message(double alpha) const {
+    return "tikhonov: A + alpha C is not positive definite (alpha = " + std::to_string(alpha) +
+           ", smallest eigenvalue of A " + std::to_string(basis_.sigma().minCoeff()) + "); use form least_squares";
+  }
+  static void set_issue(DeconvolutionResult& r, const std::string& issue) {
+    if (issue.empty()) return;
+    r.status = DeconvolutionStatus::numerical_issue;
+    r.stats.message = issue;
+  }
+  Eigen::VectorXd spectral_solution(const Eigen::VectorXd& beta, double alpha, std::string& issue) const {
+    if (paper_ && basis_.sigma().minCoeff() + alpha <= 1e-14 * scale_) issue = indefinite_message(alpha);
+    Eigen::VectorXd c(beta.size());
+    for (Eigen::Index i = 0; i < beta.size(); ++i) c(i) = filter(basis_.sigma()(i), alpha) * beta(i);
+    return basis_.synthesize(c);
+  }
+  Eigen::VectorXd factored_solution(const Eigen::VectorXd& b, double alpha, std::string& issue) const {
+    const Eigen::VectorXd rhs = paper_ ? b : op().apply_transpose(b);
+    const std::string not_pd = "tikhonov: the matrix " + std::string(paper_ ? "A + alpha C" : "A'A + alpha C") +
+                               " is not positive definite at alpha = " + std::to_string(alpha);
+    if (backend_ == Backend::dense) {
+      const Eigen::MatrixXd k = g_dense_ + alpha * c_dense_;
+      if (paper_ && !symmetric_) return k.partialPivLu().solve(rhs);
+      Eigen::LLT<Eigen::MatrixXd> llt(k);
+      if (llt.info() != Eigen::Success) {
+        issue = not_pd;
+        return Eigen::VectorXd::Zero(op().cols());
+      }
+      return llt.solve(rhs);
+    }
+    const SpMat k = g_sparse_ + alpha * c_;
+    if (paper_ && !symmetric_) {
+      Eigen::SparseLU<SpMat> lu(k);
+      if (lu.info() != Eigen::Success) {
+        issue = "tikhonov: sparse LU of A + alpha C failed at alpha = " + std::to_string(alpha);
+        return Eigen::VectorXd::Zero(op().cols());
+      }
+      return lu.solve(rhs);
+    }
+    cholmod_->factorize(k);
+    if (cholmod_->info() != Eigen::Success) {
+      issue = not_pd + " (CHOLMOD)";
+      return Eigen::VectorXd::Zero(op().cols());
+    }
+    return cholmod_->solve(rhs);
+  }
+
+  bool paper_;
+  int order_;
+  double alpha_;
+  Backend requested_, backend_ = Backend::spectral;
+  double alpha_max_, alpha_min_;
+  int alpha_count_;
+  bool symmetric_ = false;
+  double scale_ = 1.0;
+  SpectralBasis basis_;
+  SpMat c_, g_sparse_;
+  Eigen::MatrixXd g_dense_, c_dense_;
+  std::unique_ptr<Eigen::CholmodDecomposition<SpMat>> cholmod_;  // factorize() mutates; see note in solve
+};
+
+}  // namespace
+
+ParamSchema tikhonov_schema() {
+  return {string_param("form", "least_squares", "paper: (A + alpha C)x = b (4.7); least_squares: (A'A + alpha C)x = A'b",
+                       {"paper", "least_squares"}),
+          string_param("regularizer", "identity", "C = I, or C = L'L for a first/second difference L",
+                       {"identity", "first_difference", "second_difference"}),
+          number_param("alpha", 1e-6, "regularization parameter alpha (rule fixed)", 0.0, {}, true),
+          string_param("backend", "auto", "auto, spectral (C = I; SVD/eigen, Kronecker-aware), dense (Eigen), sparse (CHOLMOD)",
+                       {"auto", "spectral", "dense", "sparse"}),
+          number_param("alpha_max", 1.0, "largest alpha scanned by the rules, relative to ||A||^2 (||A|| paper form)", 0.0, {}, true),
+          number_param("alpha_min", 1e-16, "smallest alpha scanned by the rules, relative likewise", 0.0, {}, true),
+          integer_param("alpha_count", 61, "number of alphas in the rules' geometric scan", 3, 100000),
+          rule_param({"fixed", "discrepancy", "gcv", "lcurve"}, "fixed"), safety_param()};
+}
+
+std::unique_ptr<Deconvolver> make_tikhonov(const json& p) {
+  const std::string reg = p.at("regularizer").get<std::string>();
+  const std::string be = p.at("backend").get<std::string>();
+  const auto backend = be == "spectral" ? Tikhonov::Backend::spectral
+                       : be == "dense"  ? Tikhonov::Backend::dense
+                       : be == "sparse" ? Tikhonov::Backend::sparse
+                                        : Tikhonov::Backend::automatic;
+  return std::make_unique<Tikhonov>(RuleConfig::from_json(p), p.at("form").get<std::string>() == "paper",
+                                    reg == "identity" ? 0 : reg == "first_difference" ? 1 : 2,
+                                    p.at("alpha").get<double>(), backend, p.at("alpha_max").get<double>(),
+                                    p.at("alpha_min").get<double>(), p.at("alpha_count").get<int>());
+}
+
+}  // namespace closurelab

@@ -35,26 +35,44 @@ std::vector<double> log_grid_descending(double hi, double lo, int count) {
 
 int lcurve_corner(const std::vector<RecordedPoint>& p) {
   if (p.size() < 3) return p.empty() ? -1 : static_cast<int>(p.size()) - 1;
-  // Points in log–log; the discrete curvature at i is 1/R of the circle through i−1, i, i+1 (signed so that a
-  // corner of the "L" — convex towards the origin — is positive).
-  auto pt = [&](size_t i) {
-    const double tiny = 1e-300;
-    return Eigen::Vector2d(std::log(std::max(p[i].residual_norm, tiny)), std::log(std::max(p[i].solution_norm, tiny)));
+  // The L-curve (log ‖r‖, log ‖x‖), scaled to the unit square. Three-point curvature is fragile on densely
+  // sampled or jittery curves (iterative methods), so the corner is sought on the curve's convex hull facing
+  // the origin (the lower hull, as in the pruning idea of Hansen, Jensen & Rodriguez 2007): the hull vertex where
+  // the hull turns most sharply.
+  const double tiny = 1e-300;
+  std::vector<Eigen::Vector2d> q(p.size());
+  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (size_t i = 0; i < p.size(); ++i) {
+    q[i] = {std::log(std::max(p[i].residual_norm, tiny)), std::log(std::max(p[i].solution_norm, tiny))};
+    lo = lo.cwiseMin(q[i]);
+    hi = hi.cwiseMax(q[i]);
+  }
+  const Eigen::Vector2d span = (hi - lo).cwiseMax(Eigen::Vector2d(1e-12, 1e-12));
+  for (auto& v : q) v = (v - lo).cwiseQuotient(span);
+  std::vector<int> idx(p.size());
+  for (size_t i = 0; i < p.size(); ++i) idx[i] = static_cast<int>(i);
+  std::sort(idx.begin(), idx.end(), [&](int a, int b) {
+    return q[a].x() < q[b].x() || (q[a].x() == q[b].x() && q[a].y() < q[b].y());
+  });
+  auto cross = [&](int o, int a, int b) {
+    return (q[a] - q[o]).x() * (q[b] - q[o]).y() - (q[a] - q[o]).y() * (q[b] - q[o]).x();
   };
-  int best = -1;
-  double best_k = -std::numeric_limits<double>::infinity();
-  for (size_t i = 1; i + 1 < p.size(); ++i) {
-    const Eigen::Vector2d a = pt(i - 1), b = pt(i), c = pt(i + 1);
-    const double ab = (b - a).norm(), bc = (c - b).norm(), ca = (a - c).norm();
-    if (ab < 1e-14 || bc < 1e-14 || ca < 1e-14) continue;
-    const double cross = (b - a).x() * (c - b).y() - (b - a).y() * (c - b).x();
-    const double k = -2.0 * cross / (ab * bc * ca);  // walking left then up: a corner turns clockwise
-    if (std::isfinite(k) && k > best_k) {
-      best_k = k;
-      best = static_cast<int>(i);
+  std::vector<int> hull;  // lower hull by Andrew's monotone chain, left to right
+  for (int k : idx) {
+    while (hull.size() >= 2 && cross(hull[hull.size() - 2], hull.back(), k) <= 0) hull.pop_back();
+    hull.push_back(k);
+  }
+  int best = hull.size() > 2 ? hull[1] : static_cast<int>(p.size()) / 2;
+  double best_turn = -1.0;
+  for (size_t h = 1; h + 1 < hull.size(); ++h) {
+    const Eigen::Vector2d in = (q[hull[h]] - q[hull[h - 1]]).normalized(), out = (q[hull[h + 1]] - q[hull[h]]).normalized();
+    const double turn = std::acos(std::clamp(in.dot(out), -1.0, 1.0));
+    if (turn > best_turn) {
+      best_turn = turn;
+      best = hull[h];
     }
   }
-  return best < 0 ? static_cast<int>(p.size()) / 2 : best;
+  return best;
 }
 
 namespace {

@@ -4,7 +4,7 @@
 //   fixed        the configured parameter;
 //   discrepancy  the most regularized member with ‖b − A x‖ <= τ δ (Morozov; τ ≈ 1.01, δ = ‖noise‖₂);
 //   gcv          the minimizer of the generalized cross-validation function ‖r‖² / (m − trace(influence))²;
-//   lcurve       the corner of the log‖r‖–log‖x‖ curve (maximum curvature of the discrete curve).
+//   lcurve       the corner of the log‖r‖–log‖x‖ curve (the sharpest turn of its convex hull facing the origin).
 // The chooser consumes the ScanPoints a Deconvolver::scan visits (most regularized first).
 #include <Eigen/Core>
 #include <string>
@@ -31,7 +31,7 @@ struct RecordedPoint {
 DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& b, ParameterRule rule,
                                    double noise_level, double safety);
 
-// Index of the L-curve corner among points (by maximum curvature of (log ‖r‖, log ‖x‖)); -1 if < 3 points.
+// Index of the L-curve corner among points, most regularized first (see the .cpp); -1 if there are none.
 int lcurve_corner(const std::vector<RecordedPoint>& points);
 
 // Geometric grid of `count` values from hi down to lo (most regularized first for α).

@@ -133,7 +133,7 @@ json read_json_file(const std::string& file) {
   ss << in.rdbuf();
   try {
     return json::parse(ss.str());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax errors, and numbers that overflow (1e999)
     throw ConfigError("", "malformed JSON in '" + file + "': " + e.what());
   }
 }

@@ -1,0 +1,71 @@
+// Micro-benchmarks of the foundation kernels: the bond integral (App. A), the cell-list neighbour
+// search, and one direct SPH step. Run: build/bench/closurelab_bench --benchmark_filter=Foundation
+// (set OMP_NUM_THREADS=1 for per-core figures). items_per_second is bond integrals / pairs found /
+// moving particle-steps per second.
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "core/neighbour_search.hpp"
+#include "core/registry.hpp"
+#include "core/scene.hpp"
+#include "core/sph_engine.hpp"
+#include "strategies/kernels/gaussian_kernel.hpp"
+
+using namespace closurelab;
+
+namespace {
+
+std::unique_ptr<Scene> channel(int ny, int nx) {
+  return builtin_registry().scenes.create(json{{"name", "poiseuille-uniform"}, {"n_y", ny}, {"n_x", nx}}, "/scene");
+}
+
+}  // namespace
+
+static void Foundation_BondIntegral(benchmark::State& state) {
+  const double eta = 1.0 / 16, dx = 1.0 / 192;
+  GaussianKernel k(eta);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> pos(-3 * eta, 3 * eta), bond(-3 * dx, 3 * dx);
+  std::vector<std::array<Vec2, 3>> cases(4096);
+  for (auto& c : cases) c = {Vec2(pos(rng), pos(rng)), Vec2(0, 0), Vec2(bond(rng), bond(rng))};
+  std::size_t i = 0;
+  double sum = 0;
+  for (auto _ : state) {
+    const auto& c = cases[i++ & 4095];
+    sum += k.bond_integral(c[0], c[1], c[2]);
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(Foundation_BondIntegral);
+
+static void Foundation_NeighbourSearch(benchmark::State& state) {
+  const auto scene = channel(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const ParticleSystem ps = scene->make_particles();
+  std::vector<std::int32_t> all(ps.size());
+  for (std::size_t a = 0; a < ps.size(); ++a) all[a] = static_cast<std::int32_t>(a);
+  std::size_t found = 0;
+  for (auto _ : state) {
+    const PairList p = find_pairs(ps, all, scene->box, 3.5 * scene->dx, [](int, int) { return true; });
+    found = p.size();
+    benchmark::DoNotOptimize(found);
+  }
+  state.counters["particles"] = static_cast<double>(ps.size());
+  state.counters["pairs"] = static_cast<double>(found);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(ps.size()));
+}
+BENCHMARK(Foundation_NeighbourSearch)->Args({192, 12})->Args({192, 192})->Unit(benchmark::kMicrosecond);
+
+static void Foundation_SphStep(benchmark::State& state) {
+  const auto scene = channel(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  ParticleSystem ps = scene->make_particles();
+  SphEngine engine(*scene, ps);
+  const double dt = engine.time_step(0.25);
+  for (int k = 0; k < 10; ++k) engine.step(dt);
+  for (auto _ : state) engine.step(dt);
+  state.counters["moving_particles"] = static_cast<double>(engine.moving().size());
+  state.counters["pairs"] = static_cast<double>(engine.pair_count());
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(engine.moving().size()));
+}
+BENCHMARK(Foundation_SphStep)->Args({192, 12})->Args({192, 192})->Unit(benchmark::kMicrosecond);

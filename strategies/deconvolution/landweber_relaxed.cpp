@@ -53,6 +53,7 @@ class LandweberRelaxed : public DeconvolverBase {
     Eigen::VectorXd x = Eigen::VectorXd::Zero(op().cols());
     Eigen::VectorXd r = b;
     double previous = b.norm();
+    const double floor = 1e-13 * b.norm();
     for (int k = 0; k <= count; ++k) {
       if (k > 0) {
         x += omega_ * op().apply_transpose(r);
@@ -64,7 +65,7 @@ class LandweberRelaxed : public DeconvolverBase {
       p.solution_norm = x.norm();
       p.matvecs = 2L * k;
       p.last = k == count;
-      if (!(p.residual_norm <= (1.0 + 1e-10) * previous)) {
+      if (!(p.residual_norm <= (1.0 + 1e-10) * previous + floor)) {  // growth beyond rounding
         p.issue = "landweber_relaxed: the residual grows at iteration " + std::to_string(k) +
                   " (omega too large for this operator)";
         p.last = true;

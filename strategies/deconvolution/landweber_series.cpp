@@ -53,6 +53,7 @@ class LandweberSeries : public DeconvolverBase {
   void do_scan_to(const Eigen::VectorXd& b, int max_order, const ScanVisitor& visit) const {
     Eigen::VectorXd x = b, u = b;
     double previous = b.norm();
+    const double floor = 1e-13 * b.norm();
     for (int n = 0; n <= max_order; ++n) {
       Eigen::VectorXd r = u - op().apply(u);  // u_{n+1} = (I − A) u_n = b − A x_n
       ScanPoint p;
@@ -61,7 +62,7 @@ class LandweberSeries : public DeconvolverBase {
       p.solution_norm = x.norm();
       p.matvecs = n + 1;
       p.last = n == max_order;
-      if (!(p.residual_norm <= (1.0 + growth_tolerance) * previous)) {
+      if (!(p.residual_norm <= (1.0 + growth_tolerance) * previous + floor)) {  // growth beyond rounding
         p.issue = "landweber: growing mode at order " + std::to_string(n) + " (||(I-A)^k b|| grows from " +
                   std::to_string(previous) + " to " + std::to_string(p.residual_norm) +
                   "): A has eigenvalues outside (0, 2), e.g. a truncated sampled kernel";

@@ -145,7 +145,8 @@ class Tikhonov : public DeconvolverBase {
     double b_perp2 = 0.0;
     if (backend_ == Backend::spectral) {
       beta = basis_.coefficients(b);
-      b_perp2 = std::max(b.squaredNorm() - beta.squaredNorm(), 0.0);
+      // b_⊥ (the part of b outside range(U)) is nonzero only when A has more rows than singular values.
+      if (basis_.data_size() > beta.size()) b_perp2 = std::max(b.squaredNorm() - beta.squaredNorm(), 0.0);
     }
     long matvecs = backend_ == Backend::spectral ? 1 : 0;
     for (size_t g = 0; g < grid.size(); ++g) {

@@ -3,6 +3,9 @@
 // truncated by index k or by a relative threshold σ_i >= t σ_1, or by a rule scanning k = 1, 2, ...
 // On a Kronecker operator A = A_y ⊗ A_x the SVD is that of the factors (σ = σ_y σ_x), so setup is
 // O(n_x³ + n_y³) and a solve is four small dense products.
+#include <algorithm>
+#include <vector>
+
 #include "core/spectral_basis.hpp"
 #include "strategies/deconvolution/deconvolver_base.hpp"
 #include "strategies/deconvolution/deconvolvers.hpp"
@@ -44,19 +47,25 @@ class TruncatedSvd : public DeconvolverBase {
     const int n = static_cast<int>(basis_.order().size());
     const int kmax = max_rank_ > 0 ? std::min(max_rank_, n) : n;
     const double m = static_cast<double>(basis_.data_size());
-    double r2 = b.squaredNorm(), x2 = 0.0;
+    // ‖r_k‖² = Σ_{j>k} β_j² + ‖b_⊥‖², summed from the tail (no cancellation); b_⊥ = 0 unless A has more
+    // rows than singular values.
+    std::vector<double> tail(static_cast<size_t>(n) + 1, 0.0);
+    for (int j = n - 1; j >= 0; --j) {
+      const int i = basis_.order()(j);
+      tail[static_cast<size_t>(j)] = tail[static_cast<size_t>(j) + 1] + (basis_.sigma()(i) != 0.0 ? beta(i) * beta(i) : 0.0);
+    }
+    const double b_perp2 = basis_.data_size() > n ? std::max(b.squaredNorm() - tail[0], 0.0) : 0.0;
+    double x2 = 0.0;
     for (int k = 1; k <= kmax; ++k) {
       const int i = basis_.order()(k - 1);
       const double s = basis_.sigma()(i);
-      if (s != 0.0) {
-        r2 -= beta(i) * beta(i);
-        x2 += (beta(i) / s) * (beta(i) / s);
-      }
+      if (s != 0.0) x2 += (beta(i) / s) * (beta(i) / s);
+      const double r2 = tail[static_cast<size_t>(k)] + b_perp2;
       ScanPoint p;
       p.parameter = k;
-      p.residual_norm = std::sqrt(std::max(r2, 0.0));
+      p.residual_norm = std::sqrt(r2);
       p.solution_norm = std::sqrt(x2);
-      p.gcv = m > k ? std::max(r2, 0.0) / ((m - k) * (m - k)) : -1.0;
+      p.gcv = m > k ? r2 / ((m - k) * (m - k)) : -1.0;
       p.matvecs = 2;
       p.last = k == kmax;
       p.solution = [this, &beta, k] { return basis_.synthesize(filtered(beta, k)); };

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The test command: installs what is missing, builds, and runs the whole test suite with ctest.
+# Extra arguments go to ctest, e.g. `scripts/test.sh -L unit` for the quick subset.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install_deps.sh
+scripts/build.sh
+cd build
+ctest --output-on-failure -j "$(nproc)" --timeout 1500 "$@"

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 #include "core/errors.hpp"
@@ -45,6 +46,11 @@ SpectralBasis::SpectralBasis(const ForwardOperator& a, Kind kind) : kind_(kind),
   std::iota(order_.data(), order_.data() + order_.size(), 0);
   std::stable_sort(order_.data(), order_.data() + order_.size(),
                    [this](int p, int q) { return std::abs(sigma_(p)) > std::abs(sigma_(q)); });
+  if (sigma_.size() > 0) {
+    rank_tolerance_ = static_cast<double>(std::max<Eigen::Index>(m_, a.cols())) * std::numeric_limits<double>::epsilon() *
+                      std::abs(sigma_(order_(0)));
+    while (numerical_rank_ < sigma_.size() && std::abs(sigma_(order_(numerical_rank_))) > rank_tolerance_) ++numerical_rank_;
+  }
 }
 
 Eigen::VectorXd SpectralBasis::coefficients(const Eigen::VectorXd& b) const {

@@ -24,6 +24,10 @@ class SpectralBasis {
   const Eigen::VectorXd& sigma() const { return sigma_; }
   const Eigen::VectorXi& order() const { return order_; }
   Eigen::Index data_size() const { return m_; }
+  // Singular values with |σ| <= max(m, n) ε |σ_1| are zero to working precision; filter methods drop them
+  // (otherwise GCV sees spurious minima at the noise-fitting end of the family).
+  double rank_tolerance() const { return rank_tolerance_; }
+  int numerical_rank() const { return numerical_rank_; }
 
   Eigen::VectorXd coefficients(const Eigen::VectorXd& b) const;   // β = Uᵀ b
   Eigen::VectorXd synthesize(const Eigen::VectorXd& c) const;     // V c
@@ -35,6 +39,8 @@ class SpectralBasis {
   Eigen::MatrixXd u_, v_, ux_, vx_, uy_, vy_;  // dense: u_, v_; Kronecker: per factor
   Eigen::VectorXd sigma_;
   Eigen::VectorXi order_;
+  double rank_tolerance_ = 0.0;
+  int numerical_rank_ = 0;
 };
 
 }  // namespace closurelab

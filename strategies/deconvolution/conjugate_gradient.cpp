@@ -212,7 +212,7 @@ ParamSchema krylov_schema(int default_iterations) {
 ParamSchema cg_schema() {
   ParamSchema s = krylov_schema(50);
   s.push_back(bool_param("spd_check", true, "check positive definiteness from the spectrum at setup where affordable"));
-  s.push_back(integer_param("patience", 1, "rules: end the scan when the residual has not improved for this many iterations", 1, 1000000));
+  s.push_back(integer_param("patience", 3, "rules: end the scan when the residual has not improved for this many iterations", 1, 1000000));
   return s;
 }
 std::unique_ptr<Deconvolver> make_cg(const json& p) {

@@ -188,7 +188,11 @@ class Tikhonov : public DeconvolverBase {
   }
 
  private:
-  double filter(double s, double alpha) const { return paper_ ? 1.0 / (s + alpha) : s / (s * s + alpha); }
+  // x-coefficient φ(σ); singular values below the numerical rank tolerance are treated as zero.
+  double filter(double s, double alpha) const {
+    if (std::abs(s) <= basis_.rank_tolerance()) return 0.0;
+    return paper_ ? 1.0 / (s + alpha) : s / (s * s + alpha);
+  }
   std::string indefinite_message(double alpha) const {
     return "tikhonov: A + alpha C is not positive definite (alpha = " + std::to_string(alpha) +
            ", smallest eigenvalue of A " + std::to_string(basis_.sigma().minCoeff()) + "); use form least_squares";

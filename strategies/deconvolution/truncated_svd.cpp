@@ -45,14 +45,16 @@ class TruncatedSvd : public DeconvolverBase {
   void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const override {
     const Eigen::VectorXd beta = basis_.coefficients(b);
     const int n = static_cast<int>(basis_.order().size());
-    const int kmax = max_rank_ > 0 ? std::min(max_rank_, n) : n;
+    // The family stops at the numerical rank: beyond it the "singular values" are rounding noise.
+    const int rank = basis_.numerical_rank();
+    const int kmax = std::max(1, max_rank_ > 0 ? std::min(max_rank_, rank) : rank);
     const double m = static_cast<double>(basis_.data_size());
     // ‖r_k‖² = Σ_{j>k} β_j² + ‖b_⊥‖², summed from the tail (no cancellation); b_⊥ = 0 unless A has more
     // rows than singular values.
     std::vector<double> tail(static_cast<size_t>(n) + 1, 0.0);
     for (int j = n - 1; j >= 0; --j) {
       const int i = basis_.order()(j);
-      tail[static_cast<size_t>(j)] = tail[static_cast<size_t>(j) + 1] + (basis_.sigma()(i) != 0.0 ? beta(i) * beta(i) : 0.0);
+      tail[static_cast<size_t>(j)] = tail[static_cast<size_t>(j) + 1] + beta(i) * beta(i);  // σ = 0 modes stay in r
     }
     const double b_perp2 = basis_.data_size() > n ? std::max(b.squaredNorm() - tail[0], 0.0) : 0.0;
     double x2 = 0.0;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/mesh.hpp"
 #include "core/params.hpp"
 #include "core/particles.hpp"
 
@@ -55,6 +56,12 @@ struct Scene {
   ParticleSystem make_particles() const;
   double particle_mass() const;
   double max_viscosity() const;
+  // Viscosity of the fluid at a point (single-phase scenes: the one phase).
+  double viscosity_at(const Vec2& point) const;
+  // The lattice number density n* = rho0 / m and the constant pressure P* = P(n*) of the incompressible
+  // closure (§5.2: positions are kept intact).
+  double lattice_number_density() const { return rho0 / particle_mass(); }
+  double rest_pressure() const { return background_pressure; }
 };
 
 }  // namespace closurelab

@@ -35,6 +35,8 @@ double Scene::max_viscosity() const {
   return m;
 }
 
+double Scene::viscosity_at(const Vec2&) const { return phase_viscosity.at(0); }
+
 namespace {
 
 ParamSchema channel_schema() {

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/sph_pair_force.hpp"
 
 namespace closurelab {
 
@@ -152,14 +153,12 @@ void SphEngine::compute_accelerations() {
       const double F = pair_f_[p];
       if (F == 0.0) continue;
       const int i = pairs_.i[p], j = pairs_.j[p];
-      const double fp = -(p_over_n2[i] + p_over_n2[j]) * F;  // pressure part of (5.1), along q_i − q_j
-      const double fv = (mu_[i] + mu_[j]) * F / (n_[i] * n_[j]);  // viscous part, along v_i − v_j
-      const Vec2 v = relative_velocity(i, j);
-      const double fx = fp * pair_dx_[p] + fv * v.x(), fy = fp * pair_dy_[p] + fv * v.y();
-      buf[i] += fx;
-      buf[n + i] += fy;
-      buf[j] -= fx;
-      buf[n + j] -= fy;
+      const Vec2 f = sph_pair_force(p_over_n2[i], p_over_n2[j], mu_[i], mu_[j], n_[i], n_[j], F,
+                                    Vec2(pair_dx_[p], pair_dy_[p]), relative_velocity(i, j));
+      buf[i] += f.x();
+      buf[n + i] += f.y();
+      buf[j] -= f.x();
+      buf[n + j] -= f.y();
     }
   }
   for (int a : moving_) {
@@ -215,11 +214,10 @@ std::vector<PairForce> SphEngine::pair_forces() {
     const double F = pair_f_[p];
     if (F == 0.0) continue;
     const int i = pairs_.i[p], j = pairs_.j[p];
-    const double fp = -(pressure(i) / (n_[i] * n_[i]) + pressure(j) / (n_[j] * n_[j])) * F;
-    const double fv = (mu_[i] + mu_[j]) * F / (n_[i] * n_[j]);
-    const Vec2 v = relative_velocity(i, j);
-    out.push_back({i, j, Vec2(-pair_dx_[p], -pair_dy_[p]),
-                   Vec2(fp * pair_dx_[p] + fv * v.x(), fp * pair_dy_[p] + fv * v.y())});
+    const Vec2 q_ij(pair_dx_[p], pair_dy_[p]);
+    const Vec2 f = sph_pair_force(pressure(i) / (n_[i] * n_[i]), pressure(j) / (n_[j] * n_[j]), mu_[i], mu_[j], n_[i],
+                                  n_[j], F, q_ij, relative_velocity(i, j));
+    out.push_back({i, j, -q_ij, f});
   }
   return out;
 }

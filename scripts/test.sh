@@ -6,4 +6,5 @@ cd "$(dirname "$0")/.."
 scripts/install_deps.sh
 scripts/build.sh
 cd build
-ctest --output-on-failure -j "$(nproc)" --timeout 1500 "$@"
+# ctest runs one test process per core; each uses one OpenMP thread so that they do not oversubscribe.
+OMP_NUM_THREADS=1 ctest --output-on-failure -j "$(nproc)" --timeout 1500 "$@"

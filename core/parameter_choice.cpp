@@ -39,18 +39,26 @@ int lcurve_corner(const std::vector<RecordedPoint>& p) {
   // sampled or jittery curves (iterative methods), so the corner is sought on the curve's convex hull facing
   // the origin (the lower hull, as in the pruning idea of Hansen, Jensen & Rodriguez 2007): the hull vertex where
   // the hull turns most sharply.
-  const double tiny = 1e-300;
-  std::vector<Eigen::Vector2d> q(p.size());
+  // Members with ‖x‖ = 0 or ‖r‖ = 0 (the x = 0 start of an iteration, an exact fit) are not on the log–log
+  // curve; they are left out.
+  std::vector<int> on_curve;
+  for (size_t i = 0; i < p.size(); ++i)
+    if (p[i].residual_norm > 0 && p[i].solution_norm > 0 && std::isfinite(p[i].residual_norm) &&
+        std::isfinite(p[i].solution_norm))
+      on_curve.push_back(static_cast<int>(i));
+  if (on_curve.size() < 3) return on_curve.empty() ? static_cast<int>(p.size()) - 1 : on_curve.back();
+  std::vector<Eigen::Vector2d> q(on_curve.size());
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-  for (size_t i = 0; i < p.size(); ++i) {
-    q[i] = {std::log(std::max(p[i].residual_norm, tiny)), std::log(std::max(p[i].solution_norm, tiny))};
+  for (size_t i = 0; i < on_curve.size(); ++i) {
+    const RecordedPoint& r = p[static_cast<size_t>(on_curve[i])];
+    q[i] = {std::log(r.residual_norm), std::log(r.solution_norm)};
     lo = lo.cwiseMin(q[i]);
     hi = hi.cwiseMax(q[i]);
   }
   const Eigen::Vector2d span = (hi - lo).cwiseMax(Eigen::Vector2d(1e-12, 1e-12));
   for (auto& v : q) v = (v - lo).cwiseQuotient(span);
-  std::vector<int> idx(p.size());
-  for (size_t i = 0; i < p.size(); ++i) idx[i] = static_cast<int>(i);
+  std::vector<int> idx(q.size());
+  for (size_t i = 0; i < q.size(); ++i) idx[i] = static_cast<int>(i);
   std::sort(idx.begin(), idx.end(), [&](int a, int b) {
     return q[a].x() < q[b].x() || (q[a].x() == q[b].x() && q[a].y() < q[b].y());
   });
@@ -62,7 +70,7 @@ int lcurve_corner(const std::vector<RecordedPoint>& p) {
     while (hull.size() >= 2 && cross(hull[hull.size() - 2], hull.back(), k) <= 0) hull.pop_back();
     hull.push_back(k);
   }
-  int best = hull.size() > 2 ? hull[1] : static_cast<int>(p.size()) / 2;
+  int best = hull.size() > 2 ? hull[1] : static_cast<int>(q.size()) / 2;
   double best_turn = -1.0;
   for (size_t h = 1; h + 1 < hull.size(); ++h) {
     const Eigen::Vector2d in = (q[hull[h]] - q[hull[h - 1]]).normalized(), out = (q[hull[h + 1]] - q[hull[h]]).normalized();
@@ -72,7 +80,7 @@ int lcurve_corner(const std::vector<RecordedPoint>& p) {
       best = hull[h];
     }
   }
-  return best;
+  return on_curve[static_cast<size_t>(best)];
 }
 
 namespace {

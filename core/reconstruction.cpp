@@ -75,6 +75,12 @@ Eigen::VectorXd Reconstruction::sample(const std::vector<Vec2>& points) const {
   return v;
 }
 
+Reconstruction reconstruction_of(const ForwardOperator& a, Eigen::VectorXd x) {
+  if (!a.solution_mesh || a.dimension == 0)
+    throw ConfigError("", "the operator carries no solution mesh (built from a matrix, not from a kernel and meshes)");
+  return Reconstruction(*a.solution_mesh, a.dimension, std::move(x));
+}
+
 Eigen::VectorXd coarse_fine_quadrature(const AveragingKernel& kernel, const TensorMesh2D& coarse, int dimension,
                                        const Eigen::VectorXd& u, const std::vector<Vec2>& points) {
   Eigen::VectorXd out(static_cast<Eigen::Index>(points.size()));

@@ -30,6 +30,11 @@ class Reconstruction {
   Eigen::VectorXd values_;
 };
 
+class ForwardOperator;
+// The field of a solution x of A x = b on A's solution mesh (A built by make_averaging_operator_1d/2d);
+// ConfigError when A carries no mesh (e.g. a user matrix).
+Reconstruction reconstruction_of(const ForwardOperator& a, Eigen::VectorXd x);
+
 // The coarse–fine quadrature of the kernel, (A u)(y) = H Σ_i ψ_η(y − x_i) u_i, at arbitrary points
 // (1D: ψ → φ and only x is used). Periodic axes sum the images.
 Eigen::VectorXd coarse_fine_quadrature(const AveragingKernel& kernel, const TensorMesh2D& coarse, int dimension,

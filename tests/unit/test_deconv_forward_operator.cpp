@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "core/errors.hpp"
 #include "core/forward_operator.hpp"
 #include "core/reconstruction.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
@@ -95,4 +96,17 @@ TEST(DeconvReconstruction, SamplesLinearFieldsExactlyAndWrapsPeriodicAxes) {
   for (int i = 0; i < 16; ++i) w(i) = std::cos(2 * M_PI * pm.node(i));
   const Reconstruction pr(TensorMesh2D{pm, UniformMesh1D{}}, 1, w);
   EXPECT_NEAR(pr.sample(Vec2(0.01, 0)), pr.sample(Vec2(1.01, 0)), 1e-14);
+}
+
+TEST(DeconvReconstruction, ASolutionOnTheFineMeshIsSampledAtArbitraryPoints) {
+  // Coarse–fine discretization: the solution lives on the fine mesh and is a field sampled anywhere.
+  const GaussianKernel k(0.1);
+  const UniformMesh1D c = UniformMesh1D::cell_centred(0, 1, 10, false), f = UniformMesh1D::cell_centred(0, 1, 40, false);
+  const ForwardOperator a = make_averaging_operator_1d(k, c, f, Discretization::coarse_fine);
+  Eigen::VectorXd x(40);
+  for (int i = 0; i < 40; ++i) x(i) = 3.0 * f.node(i) - 1.0;
+  const Reconstruction r = reconstruction_of(a, x);
+  EXPECT_NEAR(r.sample(Vec2(0.4321, 0.0)), 3.0 * 0.4321 - 1.0, 1e-14);
+  EXPECT_THROW(reconstruction_of(ForwardOperator::from_dense(Eigen::MatrixXd::Identity(3, 3)), Eigen::VectorXd::Ones(3)),
+               ConfigError);
 }

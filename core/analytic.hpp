@@ -18,7 +18,8 @@ double poiseuille_averaged_b2(double y, double l1, double l2, double rho, double
 double poiseuille_convective_stress_b(double y, double l1, double l2, double rho, double g, double mu, double eta);
 
 // ∫ φ(y − y') f(y') dy' over [lo, hi] (f taken as zero outside), for a 1D window φ of numerical support
-// `radius`, by GSL adaptive quadrature (relative accuracy ~1e-12).
+// `radius`, by GSL adaptive quadrature (relative accuracy ~1e-12). For an f defined on the whole line
+// (periodic scenes) pass lo = y − radius, hi = y + radius.
 double average_by_quadrature(const std::function<double(double)>& f, const std::function<double(double)>& phi,
                              double radius, double y, double lo, double hi);
 

@@ -98,8 +98,9 @@ Scene make_channel(const std::string& name, const json& p, const std::string& pa
 
 void finish_sound_speed(Scene& s) {
   double peak = 0.0;
+  const double lo = s.has_walls ? s.wall_lo : 0.0, hi = s.has_walls ? s.wall_hi : s.box.ly;
   for (int k = 0; k <= 2000; ++k) {
-    const double y = s.wall_lo + (s.wall_hi - s.wall_lo) * k / 2000.0;
+    const double y = lo + (hi - lo) * k / 2000.0;
     peak = std::max(peak, std::abs(s.analytic_vx(y)));
   }
   s.analytic_peak = peak;
@@ -121,6 +122,48 @@ void register_scenes(Registry& r) {
                  finish_sound_speed(*s);
                  return s;
                });
+  r.scenes.add(
+      {"kolmogorov",
+       "periodic in x and y, no walls, force g sin(2 pi k y / L_y): a closure's error is its own (DESIGN.md par. 5)",
+       {integer_param("n_y", 48, "particle rows across L_y (epsilon' = L_y / n_y)", 8, 4096),
+        integer_param("n_x", 12, "particle columns of the periodic strip", 4, 100000),
+        number_param("eta_over_ly", 1.0 / 16.0, "averaging scale eta'/L_y", 0.0, 0.5, true),
+        number_param("ly", 1.0, "domain height L_y", 0.0, {}, true),
+        number_param("rho", 1.0, "fluid density", 0.0, {}, true),
+        number_param("mu", 1.0, "dynamic viscosity", 0.0, {}, true),
+        number_param("g", 1.0, "force amplitude per unit mass", 0.0, {}, true),
+        integer_param("k", 1, "wavenumber of the force (periods across L_y)", 1, 64),
+        string_param("smoothing_kernel", "quintic", "SPH smoothing function", {"quintic", "wendland_c2"}),
+        number_param("h_over_dx", 1.0, "SPH smoothing length h / epsilon'", 0.5, 3.0),
+        number_param("sound_speed_factor", 10.0, "sound speed / analytic peak velocity (>= 10)", 10.0, {}),
+        number_param("background_pressure_factor", 1.0, "background pressure / (rho c^2)", 0.0, 10.0)}},
+      [](const json& p) {
+        auto s = std::make_unique<Scene>();
+        s->name = "kolmogorov";
+        s->params = p;
+        s->ny = p.at("n_y").get<int>();
+        s->nx = p.at("n_x").get<int>();
+        const double ly = p.at("ly").get<double>();
+        s->dx = ly / s->ny;
+        s->box = PeriodicBox{s->nx * s->dx, ly, true, true};
+        s->eta = p.at("eta_over_ly").get<double>() * ly;
+        s->rho0 = p.at("rho").get<double>();
+        s->phase_viscosity = {p.at("mu").get<double>()};
+        s->smoothing_kernel = p.at("smoothing_kernel").get<std::string>();
+        s->h = p.at("h_over_dx").get<double>() * s->dx;
+        const double support = SmoothingKernel::from_name(s->smoothing_kernel, s->h).support();
+        if (s->box.lx < 3.0 * (support + 0.5 * s->dx))
+          throw ConfigError("/n_x", "the periodic strip (n_x epsilon') must hold 3 SPH supports plus the list skin");
+        if (s->eta * 6.0 > ly) throw ConfigError("/eta_over_ly", "eta' too large for the domain: need 6 eta' <= L_y");
+        const double g = p.at("g").get<double>(), nu = s->phase_viscosity[0] / s->rho0;
+        const double kw = 2.0 * M_PI * p.at("k").get<int>() / ly;
+        s->force_x = [=](double y) { return g * std::sin(kw * y); };
+        s->analytic_vx = [=](double y) { return g * std::sin(kw * y) / (nu * kw * kw); };
+        s->x_invariant = true;
+        s->stress_components = {"xy"};
+        finish_sound_speed(*s);
+        return s;
+      });
   ParamSchema periodic = channel_schema();
   periodic.push_back(number_param("amplitude", 5.0, "A in g [1 + A sin(n pi (y - l1)/(l2 - l1))] (par. 6)", {}, {}));
   periodic.push_back(number_param("n", 4.0, "n in the periodic force (half-waves across the channel)", 0.0, {}, true));

@@ -13,6 +13,7 @@
 #include "core/metrics.hpp"
 #include "core/sph_run.hpp"
 #include "experiments/cell_config.hpp"
+#include "experiments/direct_reference.hpp"
 #include "experiments/provenance.hpp"
 
 namespace closurelab {
@@ -71,13 +72,11 @@ class SphValidation : public ExperimentKind {
     const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
     SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
     opt.progress = progress;
-    ParticleSystem ps = scene->make_particles();
     const TensorMesh2D mesh =
         column_mesh(scene->box, cfg.at("averaging").at("mesh_spacing_over_eta").get<double>() * scene->eta);
-    opt.observable = [&](const ParticleSystem& p) {
-      return average_particles(p, scene->box, *kernel, mesh, AveragingRequest{}).vx;
-    };
-    const SphRunResult sph = run_direct_sph(*scene, ps, opt);
+    DirectReference direct = run_direct_reference(*scene, *kernel, opt, mesh);
+    const ParticleSystem& ps = direct.particles;
+    const SphRunResult& sph = direct.run;
     json row;
     row["status"] = (sph.status == "converged" || sph.status == "target_time") ? "ok" : sph.status;
     row["direct_sph"] = sph.to_json();
@@ -88,8 +87,9 @@ class SphValidation : public ExperimentKind {
     if (sph.status == "numerical_issue") return row;
 
     const double l1 = scene->wall_lo, l2 = scene->wall_hi, eta = scene->eta, peak = scene->analytic_peak;
-    const auto in_interior = [&](double y) { return y >= l1 + 3.0 * eta && y <= l2 - 3.0 * eta; };
-    const auto in_channel = [&](double y) { return y > l1 && y < l2; };
+    const bool walls = scene->has_walls;
+    const auto in_interior = [&](double y) { return !walls || (y >= l1 + 3.0 * eta && y <= l2 - 3.0 * eta); };
+    const auto in_channel = [&](double y) { return !walls || (y > l1 && y < l2); };
 
     // Particles against (5.15)/(D.3).
     std::vector<double> py, pv;
@@ -123,7 +123,8 @@ class SphValidation : public ExperimentKind {
                     {"analytic", json::array()}, {"convective_xx", json::array()}};
     for (int n = 0; n < nn; ++n) {
       const double y = mesh.node(n).y();
-      avg_ref[n] = average_by_quadrature(scene->analytic_vx, phi, kernel->support_radius(), y, l1, l2);
+      const double r = kernel->support_radius();
+      avg_ref[n] = average_by_quadrature(scene->analytic_vx, phi, r, y, walls ? l1 : y - r, walls ? l2 : y + r);
       point_ref[n] = scene->analytic_vx(y);
       node_channel[n] = in_channel(y);
       node_interior[n] = in_interior(y);

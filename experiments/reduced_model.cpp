@@ -1,0 +1,201 @@
+// Experiment kind "reduced_model" (issue 4): reduced model vs references, errors and cost in one row.
+#include "experiments/reduced_model.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <mutex>
+
+#include "core/analytic.hpp"
+#include "core/averaging.hpp"
+#include "core/deconvolver.hpp"
+#include "core/errors.hpp"
+#include "core/meso_solver.hpp"
+#include "core/metrics.hpp"
+#include "core/stress_quadrature.hpp"
+#include "experiments/cell_config.hpp"
+#include "experiments/direct_reference.hpp"
+#include "experiments/provenance.hpp"
+
+namespace closurelab {
+
+namespace {
+
+ParamSchema closure_schema() {
+  return {object_param("deconvolver", json{{"name", "landweber"}, {"order", 0}}, "registered deconvolver and its parameters"),
+          string_param("discretization", "coarse_coarse", "discretization of R_eta (par. 4.2)",
+                       {"coarse_coarse", "coarse_fine", "fine_fine"}),
+          number_param("noise_level", 0.0, "delta handed to the deconvolver's parameter rule", 0.0, {})};
+}
+
+ParamSchema meso_schema() {
+  return {number_param("kappa", 0.25, "time-step coefficient of (5.21)-(5.22)", 0.0, 1.0, true),
+          number_param("spacing_over_eta", 1.0, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0),
+          string_param("scheme", "paper", "paper: (5.11)-(5.14); staggered: conservative flux form", {"paper", "staggered"}),
+          string_param("mode", "steady", "steady or target_time", {"steady", "target_time"}),
+          number_param("target_time", 0.0, "model time in target_time mode", 0.0, {}),
+          number_param("steady_tolerance", 1e-5, "steady: max relative change over the window", 0.0, 1.0, true),
+          integer_param("steady_window", 1000, "steady: window in coarse steps", 1, {}),
+          number_param("max_time", 20.0, "give up after this model time", 0.0, {}, true)};
+}
+
+ParamSchema reference_schema() {
+  return {bool_param("direct_sph", true, "run the direct SPH of the same scene as a reference (and for the speed-up)"),
+          object_param("solver", json::object(), "direct SPH solver parameters (as in direct_sph_validation)"),
+          number_param("observe_spacing_over_eta", 0.25, "mesh spacing / eta' for the direct run's steady test", 0.01, 10.0)};
+}
+
+// Direct SPH references are shared by the cells of one process that use the same scene and solver.
+struct CachedReference {
+  Eigen::VectorXd averaged;  // at the coarse nodes
+  json run;
+};
+std::mutex cache_mutex;
+std::map<std::string, CachedReference> cache;
+
+class ReducedModel : public ExperimentKind {
+ public:
+  std::string name() const override { return "reduced_model"; }
+  std::string description() const override {
+    return "coarse solver with a deconvolution closure and a stress quadrature vs analytic, averaged analytic and "
+           "averaged direct SPH, with cost and speed-up";
+  }
+
+  json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
+    check_keys(cell, path, {"scene", "kernel", "closure", "quadrature", "solver", "reference"});
+    json out;
+    auto scene = build_scene(cell, path, reg, &out["scene"]);
+    if (!scene->analytic_vx) throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
+    auto kernel = build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
+    out["closure"] = resolve_section(cell, "closure", closure_schema(), path);
+    out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
+    out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
+    out["solver"] = resolve_section(cell, "solver", meso_schema(), path);
+    out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
+    out["reference"]["solver"] =
+        resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
+    // Cheap structural checks now (coarse mesh, quadrature fit) so that a bad cell fails before any runs.
+    auto deconv = reg.deconvolvers.create(out["closure"]["deconvolver"], path + "/closure/deconvolver");
+    auto quad = reg.quadratures.create(out["quadrature"], path + "/quadrature");
+    try {
+      MesoSolver probe(*scene, *kernel, *deconv, *quad, options(out));
+    } catch (const ConfigError& e) {
+      throw ConfigError(path + e.path(), e.message());
+    }
+    return out;
+  }
+
+  json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
+    const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
+    const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
+    auto deconv = reg.deconvolvers.create(cfg.at("closure").at("deconvolver"), "/closure/deconvolver");
+    auto quad = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
+    MesoSolverOptions opt = options(cfg);
+    opt.progress = progress;
+    MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
+    const MesoResult reduced = solver.run();
+
+    json row;
+    row["status"] = (reduced.status == "converged" || reduced.status == "target_time") ? "ok" : reduced.status;
+    row["reduced_model"] = reduced.to_json();
+    const int nn = static_cast<int>(reduced.y.size());
+    const double l1 = scene->wall_lo, l2 = scene->wall_hi, eta = scene->eta, peak = scene->analytic_peak;
+    const bool walls = scene->has_walls;
+    Eigen::VectorXd analytic(nn), analytic_avg(nn);
+    std::vector<bool> interior(nn), band(nn), fluid(nn);
+    const double r = kernel->support_radius();
+    for (int n = 0; n < nn; ++n) {
+      const double y = reduced.y[n];
+      analytic[n] = scene->analytic_vx(y);
+      analytic_avg[n] = average_by_quadrature(scene->analytic_vx, [&](double t) { return kernel->factor(t); }, r, y,
+                                              walls ? l1 : y - r, walls ? l2 : y + r);
+      fluid[n] = !walls || (y > l1 + 1e-12 && y < l2 - 1e-12);  // wall nodes carry the imposed v̄ = 0
+      interior[n] = !walls || (y >= l1 + 3 * eta - 1e-12 && y <= l2 - 3 * eta + 1e-12);
+      band[n] = fluid[n] && !interior[n];
+    }
+    auto norms = [&](const Eigen::VectorXd& ref) {
+      return json{{"all", error_norms(reduced.v, ref, fluid, peak).to_json()},
+                  {"interior", error_norms(reduced.v, ref, interior, peak).to_json()},
+                  {"wall_band", error_norms(reduced.v, ref, band, peak).to_json()},
+                  {"peak_relative_difference", peak_relative_difference(reduced.v, ref)}};
+    };
+    json errors = {{"vs_analytic", norms(analytic)}, {"vs_averaged_analytic", norms(analytic_avg)}};
+    json profile = {{"y", reduced.y}, {"reduced", reduced.v}, {"analytic", analytic}, {"analytic_average", analytic_avg}};
+    json cost = {{"wall_seconds", reduced.wall_seconds},
+                 {"steps", reduced.steps},
+                 {"dt", reduced.dt},
+                 {"model_time", reduced.time},
+                 {"deconvolution_seconds", reduced.deconvolution_seconds},
+                 {"deconvolution_matvecs", reduced.deconvolution_matvecs},
+                 {"quadrature_seconds", reduced.quadrature_seconds},
+                 {"pair_forces_per_step", reduced.quadrature_cost.evaluations > 0
+                                              ? static_cast<double>(reduced.quadrature_cost.pair_forces) /
+                                                    reduced.quadrature_cost.evaluations
+                                              : 0.0},
+                 {"bond_weights", reduced.quadrature_cost.bond_weights}};
+
+    if (cfg.at("reference").at("direct_sph").get<bool>()) {
+      const CachedReference ref = direct_reference(cfg, *scene, *kernel, reduced.y, progress);
+      errors["vs_averaged_direct_sph"] = norms(ref.averaged);
+      profile["direct_average"] = ref.averaged;
+      row["direct_sph"] = ref.run;
+      const double direct_seconds = ref.run.at("wall_seconds").get<double>();
+      cost["direct_sph_wall_seconds"] = direct_seconds;
+      cost["speed_up"] = reduced.wall_seconds > 0 ? direct_seconds / reduced.wall_seconds : 0.0;
+    }
+    cost["peak_memory_mib"] = peak_memory_mib();
+    row["errors"] = errors;
+    row["cost"] = cost;
+    row["profile"] = profile;
+    return row;
+  }
+
+ private:
+  static MesoSolverOptions options(const json& cfg) {
+    const json& s = cfg.at("solver");
+    MesoSolverOptions o;
+    o.kappa = s.at("kappa").get<double>();
+    o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
+    o.scheme = s.at("scheme").get<std::string>();
+    o.discretization = parse_discretization(cfg.at("closure").at("discretization").get<std::string>(), "/closure/discretization");
+    o.noise_level = cfg.at("closure").at("noise_level").get<double>();
+    o.to_steady_state = s.at("mode") == "steady";
+    o.target_time = s.at("target_time").get<double>();
+    o.steady_tolerance = s.at("steady_tolerance").get<double>();
+    o.steady_window = s.at("steady_window").get<int>();
+    o.max_time = s.at("max_time").get<double>();
+    return o;
+  }
+
+  static CachedReference direct_reference(const json& cfg, const Scene& scene, const AveragingKernel& kernel,
+                                          const Eigen::VectorXd& nodes, const ProgressFn& progress) {
+    const std::string key = cfg.at("scene").dump() + cfg.at("kernel").dump() + cfg.at("reference").dump() +
+                            json(std::vector<double>(nodes.data(), nodes.data() + nodes.size())).dump();
+    {
+      std::lock_guard<std::mutex> lock(cache_mutex);
+      auto it = cache.find(key);
+      if (it != cache.end()) {
+        CachedReference c = it->second;
+        c.run["reused_from_an_earlier_cell"] = true;
+        return c;
+      }
+    }
+    SphRunOptions opt = sph_run_options_from(cfg.at("reference").at("solver"));
+    opt.progress = progress;
+    const double spacing = cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene.eta;
+    const DirectReference d = run_direct_reference(scene, kernel, opt, column_mesh(scene.box, spacing));
+    UniformMesh1D axis{nodes[0], nodes.size() > 1 ? nodes[1] - nodes[0] : 1.0, static_cast<int>(nodes.size()),
+                       !scene.has_walls, scene.has_walls ? 0.0 : scene.box.ly};
+    const TensorMesh2D mesh{UniformMesh1D{0.0, scene.box.lx, 1, true, scene.box.lx}, axis};
+    CachedReference c{average_particles(d.particles, scene.box, kernel, mesh, AveragingRequest{}).vx, d.run.to_json()};
+    std::lock_guard<std::mutex> lock(cache_mutex);
+    cache[key] = c;
+    return c;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<ExperimentKind> make_reduced_model_experiment() { return std::make_unique<ReducedModel>(); }
+
+}  // namespace closurelab

@@ -1,5 +1,6 @@
 #include "core/errors.hpp"
 #include "experiments/experiment_kind.hpp"
+#include "experiments/quadrature_convergence.hpp"
 #include "experiments/sph_validation.hpp"
 #include "experiments/stability_experiment.hpp"
 
@@ -10,6 +11,7 @@ const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds() {
     std::vector<std::unique_ptr<ExperimentKind>> k;
     k.push_back(make_sph_validation_experiment());
     k.push_back(make_stability_experiment());
+    k.push_back(make_quadrature_convergence_experiment());
     return k;
   }();
   return kinds;

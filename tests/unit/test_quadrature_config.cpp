@@ -1,0 +1,104 @@
+// Stress-quadrature configuration: registration, parameter validation and clear errors before running.
+#include <gtest/gtest.h>
+
+#include "core/errors.hpp"
+#include "strategies/kernels/gaussian_kernel.hpp"
+#include "strategies/quadrature/coarse_quadrature.hpp"
+#include "strategies/quadrature/exact_quadrature.hpp"
+#include "tests/numerical/test_quadrature_support.hpp"
+
+using namespace closurelab;
+using namespace closurelab::quadrature_test;
+
+namespace {
+
+// The ConfigError thrown by `f`, or a failure.
+template <class F>
+ConfigError config_error(F f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no ConfigError";
+  return ConfigError("", "");
+}
+
+}  // namespace
+
+TEST(QuadratureConfig, BothQuadraturesAreRegisteredWithResolvedDefaults) {
+  const Registry& r = builtin_registry();
+  ASSERT_TRUE(r.quadratures.contains("exact"));
+  ASSERT_TRUE(r.quadratures.contains("coarse"));
+  const json c = r.quadratures.resolve(json{{"name", "coarse"}}, "/quadrature");
+  EXPECT_EQ(c.at("stride_y"), 4);
+  EXPECT_EQ(c.at("stride_x"), 0);
+  EXPECT_EQ(r.quadratures.create(json{{"name", "exact"}}, "/q")->name(), "exact");
+}
+
+TEST(QuadratureConfig, OutOfRangeOrUnknownParametersNameThePath) {
+  const Registry& r = builtin_registry();
+  EXPECT_NE(config_error([&] { r.quadratures.create(json{{"name", "coarse"}, {"stride_y", 0}}, "/q"); }).path().find("/q/stride_y"),
+            std::string::npos);
+  EXPECT_NE(config_error([&] { r.quadratures.create(json{{"name", "coarse"}, {"stride_x", -1}}, "/q"); }).path().find("/q/stride_x"),
+            std::string::npos);
+  EXPECT_NE(config_error([&] { r.quadratures.create(json{{"name", "coarse"}, {"factor", 16}}, "/q"); }).path().find("/q"),
+            std::string::npos);
+  EXPECT_NE(std::string(config_error([&] { r.quadratures.create(json{{"name", "simpson"}}, "/q"); }).what()).find("coarse"),
+            std::string::npos);
+}
+
+TEST(QuadratureConfig, RGridThatDoesNotTileTheLatticeIsRejectedAtSetup) {
+  const auto s = channel(48);  // n_y = 48, n_x = 12
+  const GaussianKernel k(s->eta);
+  const TensorMesh2D mesh = column_mesh(s->box, s->eta);
+  {
+    CoarseQuadrature q(0, 5);
+    const ConfigError e = config_error([&] { q.setup(*s, k, mesh, {"xy"}); });
+    EXPECT_EQ(e.path(), "/stride_y");
+    EXPECT_NE(e.message().find("1, 2, 3, 4, 6, 8, 12, 16, 24, 48"), std::string::npos) << e.message();
+  }
+  {
+    CoarseQuadrature q(5, 4);
+    EXPECT_EQ(config_error([&] { q.setup(*s, k, mesh, {"xy"}); }).path(), "/stride_x");
+  }
+  {
+    const Scene box = periodic_box(16, 0.5);  // not x-invariant: the x-integrated column does not apply
+    const auto axis = UniformMesh1D::cell_centred(0.0, 0.5, 8, true);
+    CoarseQuadrature q(0, 4);
+    EXPECT_EQ(config_error([&] { q.setup(box, k, TensorMesh2D{axis, axis}, {"xy"}); }).path(), "/stride_x");
+  }
+}
+
+TEST(QuadratureConfig, MeshOrComponentsUnfitForTheSceneAreRejected) {
+  const auto s = channel(48);
+  const GaussianKernel k(s->eta);
+  const TensorMesh2D not_periodic{UniformMesh1D::cell_centred(0.0, s->box.lx, 1, false),
+                                  UniformMesh1D::cell_centred(0.0, 1.0, 16, false)};
+  for (auto* q : std::vector<StressQuadrature*>{new ExactQuadrature, new CoarseQuadrature(0, 4)}) {
+    std::unique_ptr<StressQuadrature> owner(q);
+    config_error([&] { q->setup(*s, k, not_periodic, {"xy"}); });
+    config_error([&] { q->setup(*s, k, column_mesh(s->box, s->eta), {"zz"}); });
+    config_error([&] { q->setup(*s, k, column_mesh(s->box, s->eta), {}); });
+  }
+}
+
+TEST(QuadratureConfig, MisuseIsReportedNotIgnored) {
+  const auto s = channel(48);
+  const GaussianKernel k(s->eta);
+  ExactQuadrature q;
+  const VelocitySampler none = [](const std::vector<Vec2>&) { return Eigen::Matrix2Xd(2, 0); };
+  EXPECT_THROW(q.evaluate(none), std::logic_error);
+  q.setup(*s, k, column_mesh(s->box, s->eta), {"xy"});
+  EXPECT_THROW(q.evaluate(none), NumericalError);
+  CoarseQuadrature c(0, 4);
+  c.setup(*s, k, column_mesh(s->box, s->eta), {"xy"});
+  EXPECT_THROW(c.evaluate(none), NumericalError);
+  // The cost of the coarse quadrature does not depend on N: the same R-grid on a strip 8x wider.
+  const auto wide = channel(48, 1.0 / 16, 96);
+  CoarseQuadrature c2(0, 4);
+  c2.setup(*wide, k, column_mesh(wide->box, wide->eta), {"xy"});
+  EXPECT_EQ(c2.virtual_pairs(), c.virtual_pairs());
+  EXPECT_EQ(c2.r_nodes(), 12);
+  EXPECT_DOUBLE_EQ(c2.coarsening(), 96.0 * 4.0);
+}

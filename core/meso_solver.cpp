@@ -74,6 +74,45 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
   rho_bar_ = f.rho;
   accel_force_ = f.fx.cwiseQuotient(f.rho);
   v_ = Eigen::VectorXd::Zero(coarse_.count);
+  if (opt_.wall_constraint_forces && scene.has_walls) {
+    lattice_ = lattice;
+    engine_ = std::make_unique<SphEngine>(scene, lattice_);
+    const double reach = 2.0 * scene.h * 3.0;  // wall particles that interact with fluid particles
+    for (std::size_t a = 0; a < lattice_.size(); ++a)
+      if (lattice_.fixed[a] && (lattice_.y[a] > scene.wall_lo - reach && lattice_.y[a] < scene.wall_hi + reach))
+        wall_ids_.push_back(static_cast<std::int32_t>(a));
+    wall_weights_ = Eigen::MatrixXd::Zero(coarse_.count, static_cast<Eigen::Index>(wall_ids_.size()));
+    const double r = kernel.support_radius();
+    for (std::size_t w = 0; w < wall_ids_.size(); ++w) {
+      const int a = wall_ids_[w];
+      double wx = 0.0;  // the column sits at x = 0; sum the periodic images in x
+      for (int k = static_cast<int>(std::floor((-r - lattice_.x[a]) / scene.box.lx));
+           k <= static_cast<int>(std::ceil((r - lattice_.x[a]) / scene.box.lx)); ++k)
+        wx += kernel.factor(lattice_.x[a] + k * scene.box.lx);
+      for (int n = 0; n < coarse_.count; ++n)
+        wall_weights_(n, static_cast<Eigen::Index>(w)) = wx * kernel.factor(coarse_.node(n) - lattice_.y[a]);
+    }
+  }
+}
+
+Eigen::VectorXd MesoSolver::constraint_force() {
+  std::vector<Vec2> pts;
+  std::vector<std::int32_t> fluid;
+  for (std::size_t a = 0; a < lattice_.size(); ++a)
+    if (!lattice_.fixed[a]) fluid.push_back(static_cast<std::int32_t>(a)), pts.emplace_back(lattice_.x[a], lattice_.y[a]);
+  const Eigen::Matrix2Xd v = sample_reconstruction(pts);
+  for (std::size_t k = 0; k < fluid.size(); ++k) {
+    lattice_.vx[fluid[k]] = v(0, static_cast<Eigen::Index>(k));
+    lattice_.vy[fluid[k]] = v(1, static_cast<Eigen::Index>(k));
+  }
+  std::vector<double> net(lattice_.size(), 0.0);  // x-force on each particle
+  for (const PairForce& p : engine_->pair_forces()) {
+    net[p.j] += p.f.x();
+    net[p.k] -= p.f.x();
+  }
+  Eigen::VectorXd c(static_cast<Eigen::Index>(wall_ids_.size()));
+  for (std::size_t w = 0; w < wall_ids_.size(); ++w) c[static_cast<Eigen::Index>(w)] = -net[wall_ids_[w]];
+  return wall_weights_ * c;
 }
 
 void MesoSolver::set_velocity(const Eigen::VectorXd& v) {
@@ -142,6 +181,7 @@ bool MesoSolver::step(double dt, std::string& issue) {
       }
     }
   }
+  if (engine_) dtdy += constraint_force();
   for (int k = 0; k < n; ++k) v_[k] += dt * (dtdy[k] / rho_bar_[k] + accel_force_[k]);
   if (!periodic_) v_[0] = v_[n - 1] = 0.0;  // (5.14)
   return true;

@@ -19,6 +19,7 @@
 #include "core/forward_operator.hpp"
 #include "core/params.hpp"
 #include "core/scene.hpp"
+#include "core/sph_engine.hpp"
 #include "core/stress_quadrature.hpp"
 
 namespace closurelab {
@@ -37,6 +38,11 @@ struct MesoSolverOptions {
   std::int64_t max_steps = 10000000;
   double progress_seconds = 10.0;
   std::function<void(const std::string&)> progress;
+  // Wall particles are held at rest by constraint forces that (5.8) does not contain (DESIGN.md §6). When
+  // true, their average F_c(y) = −Σ_walls f_i^int ψ(y − q_i), with f_i^int the pair forces (5.1) on wall
+  // particle i under the reconstructed velocities, is added to the coarse balance. Costs one pair-force
+  // sweep of the lattice per step (O(N)).
+  bool wall_constraint_forces = false;
 };
 
 struct MesoResult {
@@ -71,6 +77,7 @@ class MesoSolver {
 
  private:
   bool close_stress(std::string& issue);  // deconvolve + quadrature → t_
+  Eigen::VectorXd constraint_force();     // F_c at the coarse nodes for the current reconstruction
 
   const Scene& scene_;
   const AveragingKernel& kernel_;
@@ -81,6 +88,10 @@ class MesoSolver {
   ForwardOperator op_;
   bool periodic_ = false;
   Eigen::VectorXd v_, accel_force_, rho_bar_, t_, reconstruction_;
+  ParticleSystem lattice_;                // for the constraint forces
+  std::unique_ptr<SphEngine> engine_;
+  Eigen::MatrixXd wall_weights_;          // ψ(node_k − q_i) for the wall particles i near the fluid
+  std::vector<std::int32_t> wall_ids_;
   long matvecs_ = 0;
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
 };

@@ -4,7 +4,10 @@
 
 namespace closurelab {
 
-json ErrorNorms::to_json() const { return {{"max_rel", max_rel}, {"l2_rel", l2_rel}, {"count", count}}; }
+json ErrorNorms::to_json() const {
+  if (count == 0) return {{"max_rel", nullptr}, {"l2_rel", nullptr}, {"count", 0}};  // an empty subset has no error
+  return {{"max_rel", max_rel}, {"l2_rel", l2_rel}, {"count", count}};
+}
 
 ErrorNorms error_norms(const Eigen::VectorXd& u, const Eigen::VectorXd& ref, const std::vector<bool>& mask,
                        double scale) {

@@ -36,7 +36,9 @@ ParamSchema meso_schema() {
           number_param("target_time", 0.0, "model time in target_time mode", 0.0, {}),
           number_param("steady_tolerance", 1e-5, "steady: max relative change over the window", 0.0, 1.0, true),
           integer_param("steady_window", 1000, "steady: window in coarse steps", 1, {}),
-          number_param("max_time", 20.0, "give up after this model time", 0.0, {}, true)};
+          number_param("max_time", 20.0, "give up after this model time", 0.0, {}, true),
+          bool_param("wall_constraint_forces", false,
+                     "add the averaged constraint forces holding the wall particles (DESIGN.md par. 6)")};
 }
 
 ParamSchema reference_schema() {
@@ -164,6 +166,7 @@ class ReducedModel : public ExperimentKind {
     o.steady_tolerance = s.at("steady_tolerance").get<double>();
     o.steady_window = s.at("steady_window").get<int>();
     o.max_time = s.at("max_time").get<double>();
+    o.wall_constraint_forces = s.at("wall_constraint_forces").get<bool>();
     return o;
   }
 

@@ -22,27 +22,6 @@ TensorMesh2D column_mesh(const PeriodicBox& box, double spacing) {
 
 namespace {
 
-// Nodes of `axis` within `radius` of the point q (with periodic images), as (node, offset) pairs:
-// offset = node − image of q.
-template <class F>
-void for_nodes_near(const UniformMesh1D& axis, double q, double radius, F f) {
-  if (!axis.periodic) {
-    const int lo = std::max(0, static_cast<int>(std::ceil((q - radius - axis.origin) / axis.spacing)));
-    const int hi = std::min(axis.count - 1, static_cast<int>(std::floor((q + radius - axis.origin) / axis.spacing)));
-    for (int i = lo; i <= hi; ++i) f(i, axis.node(i) - q);
-    return;
-  }
-  const double last = axis.node(axis.count - 1);
-  const int kmin = static_cast<int>(std::floor((axis.origin - radius - q) / axis.period));
-  const int kmax = static_cast<int>(std::ceil((last + radius - q) / axis.period));
-  for (int k = kmin; k <= kmax; ++k) {
-    const double qi = q + k * axis.period;
-    const int lo = std::max(0, static_cast<int>(std::ceil((qi - radius - axis.origin) / axis.spacing)));
-    const int hi = std::min(axis.count - 1, static_cast<int>(std::floor((qi + radius - axis.origin) / axis.spacing)));
-    for (int i = lo; i <= hi; ++i) f(i, axis.node(i) - qi);
-  }
-}
-
 struct Weights {
   std::vector<std::pair<int, double>> x, y;
 };
@@ -52,13 +31,13 @@ void particle_weights(const AveragingKernel& kernel, const TensorMesh2D& mesh, d
   const double r = kernel.support_radius();
   w.x.clear();
   w.y.clear();
-  for_nodes_near(mesh.x, qx, r, [&](int i, double d) {
+  for_nodes_within(mesh.x, qx, r, [&](int i, double d) {
     const double v = kernel.factor(d);
     for (auto& e : w.x)
       if (e.first == i) return void(e.second += v);
     w.x.emplace_back(i, v);
   });
-  for_nodes_near(mesh.y, qy, r, [&](int j, double d) {
+  for_nodes_within(mesh.y, qy, r, [&](int j, double d) {
     const double v = kernel.factor(d);
     for (auto& e : w.y)
       if (e.first == j) return void(e.second += v);
@@ -141,8 +120,8 @@ MesoFields average_particles(const ParticleSystem& ps, const PeriodicBox& box, c
         double tab[4];
         for (int c = 0; c < nc; ++c) tab[c] = pf.f[comps[c].first] * pf.d[comps[c].second];
         // Images of the bond's midpoint within reach of the nodes; the bond integral of each image.
-        for_nodes_near(mesh.y, mid.y(), reach, [&](int jy, double oy) {
-          for_nodes_near(mesh.x, mid.x(), reach, [&](int ix, double ox) {
+        for_nodes_within(mesh.y, mid.y(), reach, [&](int jy, double oy) {
+          for_nodes_within(mesh.x, mid.x(), reach, [&](int ix, double ox) {
             const Vec2 node = mesh.node(ix, jy);
             const Vec2 shift = node - Vec2(ox, oy) - mid;  // the periodic image shift
             const double b = kernel.bond_integral(node, qj + shift, qj + shift + pf.d);

@@ -3,6 +3,8 @@
 // tensor-product mesh built from two axes. Node (i, j) of a TensorMesh2D has flat index j * nx + i
 // (x fastest), matching the Kronecker ordering A = A_y ⊗ A_x.
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace closurelab {
@@ -24,6 +26,22 @@ struct UniformMesh1D {
   // Nodes with a given spacing inside [lo, hi], symmetric about the interval's middle.
   static UniformMesh1D spanning(double lo, double hi, double spacing);
 };
+
+// Calls f(node index, node − image of q) for every node of `axis` within `radius` of the point q, summing
+// over the periodic images of q when the axis is periodic (a node may then be visited more than once).
+template <class F>
+void for_nodes_within(const UniformMesh1D& axis, double q, double radius, F f) {
+  const auto visit = [&](double qi) {
+    const int lo = std::max(0, static_cast<int>(std::ceil((qi - radius - axis.origin) / axis.spacing)));
+    const int hi = std::min(axis.count - 1, static_cast<int>(std::floor((qi + radius - axis.origin) / axis.spacing)));
+    for (int i = lo; i <= hi; ++i) f(i, axis.node(i) - qi);
+  };
+  if (!axis.periodic) return visit(q);
+  const double last = axis.node(axis.count - 1);
+  const int kmin = static_cast<int>(std::floor((axis.origin - radius - q) / axis.period));
+  const int kmax = static_cast<int>(std::ceil((last + radius - q) / axis.period));
+  for (int k = kmin; k <= kmax; ++k) visit(q + k * axis.period);
+}
 
 struct TensorMesh2D {
   UniformMesh1D x, y;

@@ -36,9 +36,10 @@ TEST(CoarseQuadrature, FinestGridIsTheExactPairSum) {
     });
     ExactQuadrature exact;
     exact.setup(*s, k, mesh, kAll);
-    CoarseQuadrature column(0, 1), grid(1, 1);
+    CoarseQuadrature column(0, 1), grid(1, 1), refined(1, 1, true);
     column.setup(*s, k, mesh, kAll);
     grid.setup(*s, k, mesh, kAll);
+    refined.setup(*s, k, mesh, kAll);
     EXPECT_DOUBLE_EQ(column.coarsening(), 12.0);  // one R column per strip of n_x = 12 columns
     EXPECT_DOUBLE_EQ(grid.coarsening(), 1.0);
     {
@@ -48,6 +49,10 @@ TEST(CoarseQuadrature, FinestGridIsTheExactPairSum) {
     {
       const auto [diff, scale] = max_difference(grid.evaluate(general), exact.evaluate(general));
       EXPECT_LE(diff, 1e-12 * scale) << walls << " 2D grid";
+    }
+    {
+      const auto [diff, scale] = max_difference(refined.evaluate(general), exact.evaluate(general));
+      EXPECT_LE(diff, 1e-12 * scale) << walls << " 2D grid, fine wall bands";
     }
   }
 }

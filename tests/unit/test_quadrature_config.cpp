@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "core/errors.hpp"
+#include "experiments/experiment_kind.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 #include "strategies/quadrature/coarse_quadrature.hpp"
 #include "strategies/quadrature/exact_quadrature.hpp"
@@ -33,6 +34,7 @@ TEST(QuadratureConfig, BothQuadraturesAreRegisteredWithResolvedDefaults) {
   const json c = r.quadratures.resolve(json{{"name", "coarse"}}, "/quadrature");
   EXPECT_EQ(c.at("stride_y"), 4);
   EXPECT_EQ(c.at("stride_x"), 0);
+  EXPECT_EQ(c.at("wall_band"), "coarse");  // plain (5.27), as in the paper
   EXPECT_EQ(r.quadratures.create(json{{"name", "exact"}}, "/q")->name(), "exact");
 }
 
@@ -101,4 +103,17 @@ TEST(QuadratureConfig, MisuseIsReportedNotIgnored) {
   EXPECT_EQ(c2.virtual_pairs(), c.virtual_pairs());
   EXPECT_EQ(c2.r_nodes(), 12);
   EXPECT_DOUBLE_EQ(c2.coarsening(), 96.0 * 4.0);
+}
+
+TEST(QuadratureConfig, ExperimentCellWithABadRGridFailsBeforeRunning) {
+  const Registry& r = builtin_registry();
+  const ExperimentKind& kind = find_experiment_kind("quadrature_convergence", "/kind");
+  const json cell = {{"scene", {{"name", "poiseuille-uniform"}, {"n_y", 48}}},
+                     {"quadrature", {{"name", "coarse"}, {"stride_y", 5}}}};
+  EXPECT_EQ(config_error([&] { kind.resolve(cell, "/cells/0", r); }).path(), "/cells/0/quadrature/stride_y");
+  json ok = cell;
+  ok["quadrature"]["stride_y"] = 4;
+  const json resolved = kind.resolve(ok, "/cells/0", r);
+  EXPECT_EQ(resolved.at("evaluation").at("velocity"), "analytic");
+  EXPECT_EQ(resolved.at("quadrature").at("wall_band"), "coarse");
 }

@@ -1,6 +1,7 @@
 #include "core/errors.hpp"
 #include "experiments/experiment_kind.hpp"
 #include "experiments/quadrature_convergence.hpp"
+#include "experiments/reduced_model.hpp"
 #include "experiments/sph_validation.hpp"
 #include "experiments/stability_experiment.hpp"
 
@@ -12,6 +13,7 @@ const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds() {
     k.push_back(make_sph_validation_experiment());
     k.push_back(make_stability_experiment());
     k.push_back(make_quadrature_convergence_experiment());
+    k.push_back(make_reduced_model_experiment());
     return k;
   }();
   return kinds;

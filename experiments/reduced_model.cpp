@@ -122,6 +122,21 @@ class ReducedModel : public ExperimentKind {
                   {"peak_relative_difference", peak_relative_difference(reduced.v, ref)}};
     };
     json errors = {{"vs_analytic", norms(analytic)}, {"vs_averaged_analytic", norms(analytic_avg)}};
+    if (scene->name == "kolmogorov") {
+      // The steady sine amplitude against the true V, and the Landweber prediction e/(1 − (1 − e)^{n+1}).
+      const double kw = 2 * M_PI * scene->params.at("k").get<int>() / scene->box.ly;
+      double s = 0, norm = 0;
+      for (int n = 0; n < nn; ++n) {
+        s += reduced.v[n] * std::sin(kw * reduced.y[n]);
+        norm += std::pow(std::sin(kw * reduced.y[n]), 2);
+      }
+      const double v_amp = scene->params.at("g").get<double>() * scene->rho0 / (scene->phase_viscosity[0] * kw * kw);
+      const double e = std::exp(-std::pow(kw * eta, 2) / 4);
+      errors["kolmogorov"] = {{"amplitude_ratio", s / norm / v_amp}, {"e", e}};
+      const json& d = cfg.at("closure").at("deconvolver");
+      if (d.at("name") == "landweber" && d.at("rule") == "fixed")
+        errors["kolmogorov"]["landweber_prediction"] = e / (1 - std::pow(1 - e, d.at("order").get<int>() + 1));
+    }
     json profile = {{"y", reduced.y}, {"reduced", reduced.v}, {"analytic", analytic}, {"analytic_average", analytic_avg}};
     json cost = {{"wall_seconds", reduced.wall_seconds},
                  {"steps", reduced.steps},

@@ -48,8 +48,12 @@ def main(path, prefix):
         print("matplotlib not available: no figure", file=sys.stderr)
         return
     rows = [r for r in table["rows"] if "profile" in r]
-    fig, axes = plt.subplots(1, max(1, len(rows)), figsize=(3.2 * max(1, len(rows)), 3.2), squeeze=False)
-    for ax, r in zip(axes[0], rows):
+    ncols = min(4, max(1, len(rows)))
+    nrows = (len(rows) + ncols - 1) // ncols
+    fig, axes = plt.subplots(nrows, ncols, figsize=(3.4 * ncols, 3.0 * nrows), squeeze=False)
+    for ax in axes.flat[len(rows):]:
+        ax.axis("off")
+    for ax, r in zip(axes.flat, rows):
         p = r["profile"]
         ax.plot(p["y"], p["analytic"], "k-", label="analytic")
         ax.plot(p["y"], p["analytic_average"], "k:", label="averaged analytic")
@@ -58,7 +62,8 @@ def main(path, prefix):
         ax.plot(p["y"], p["reduced"], "rd--", label="reduced model")
         ax.set_title(r["label"], fontsize=7)
         ax.set_xlabel("y")
-    axes[0][0].set_ylabel("v_x")
+    for row in axes:
+        row[0].set_ylabel("v_x")
     axes[0][0].legend(fontsize=6)
     fig.tight_layout()
     fig.savefig(prefix + ".png", dpi=110)

@@ -1,0 +1,88 @@
+// The reduced model on the wall-free kolmogorov scene: with the Landweber closure of order n the steady
+// amplitude must follow the Fourier prediction e / (1 − (1 − e)^{n+1}) of the true velocity (DESIGN.md §5),
+// e = exp(−(2πkη'/L)²/4), to discretization error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/deconvolver.hpp"
+#include "core/meso_solver.hpp"
+#include "core/registry.hpp"
+#include "core/scene.hpp"
+#include "core/stress_quadrature.hpp"
+
+using namespace closurelab;
+
+namespace {
+
+struct KolmogorovRun {
+  double amplitude_ratio;  // steady sine amplitude of v̄ / (g / (ν κ²))
+  double predicted;
+  MesoResult result;
+};
+
+KolmogorovRun run_kolmogorov(int order, const std::string& quadrature, double spacing_over_eta) {
+  const Registry& reg = builtin_registry();
+  const int k = 2;
+  const double eta = 1.0 / 16;
+  const auto scene = reg.scenes.create(json{{"name", "kolmogorov"}, {"n_y", 64}, {"k", k}, {"eta_over_ly", eta}}, "/scene");
+  const auto kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", eta}}, "/kernel");
+  auto deconv = reg.deconvolvers.create(json{{"name", "landweber"}, {"order", order}}, "/deconvolver");
+  auto quad = reg.quadratures.create(json{{"name", quadrature}}, "/quadrature");
+  MesoSolverOptions opt;
+  opt.spacing_over_eta = spacing_over_eta;
+  opt.to_steady_state = false;
+  opt.target_time = 0.15;  // the mode decays like exp(−ν κ² t), κ = 4π: e^{−24}
+  MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
+  KolmogorovRun out{0, 0, solver.run()};
+  const double kw = 2 * M_PI * k;
+  double s = 0, norm = 0;
+  for (Eigen::Index i = 0; i < out.result.y.size(); ++i) {
+    s += out.result.v[i] * std::sin(kw * out.result.y[i]);
+    norm += std::sin(kw * out.result.y[i]) * std::sin(kw * out.result.y[i]);
+  }
+  out.amplitude_ratio = (s / norm) / (1.0 / (kw * kw));
+  const double e = std::exp(-std::pow(kw * eta, 2) / 4);
+  out.predicted = e / (1 - std::pow(1 - e, order + 1));
+  return out;
+}
+
+}  // namespace
+
+TEST(ReducedModel, KolmogorovFollowsTheLandweberPrediction) {
+  // The SPH viscous operator on the n_y = 64 lattice misses the continuum one by O((κ ε')²) ≈ 1 % at κ = 4π;
+  // that factor is common to every order, so the ratios between orders test the closure alone.
+  double first = 0.0;
+  for (int n : {0, 1, 2, 5}) {
+    const KolmogorovRun r = run_kolmogorov(n, "exact", 0.25);
+    ASSERT_EQ(r.result.status, "target_time") << r.result.message;
+    const double rel = r.amplitude_ratio / r.predicted;
+    std::cout << "order " << n << ": amplitude ratio " << r.amplitude_ratio << ", predicted " << r.predicted
+              << ", relative difference " << rel - 1 << "\n";
+    EXPECT_NEAR(rel, 1.0, 0.02);  // measured 1.04 %
+    if (n == 0) first = rel;
+    EXPECT_NEAR(rel / first, 1.0, 1e-4) << "order " << n;  // measured identical to 1e-7
+  }
+}
+
+TEST(ReducedModel, StaggeredSchemeReachesASmoothSteadyStateInTheChannel) {
+  // The collocated scheme (5.11)–(5.13) decouples odd and even nodes, and its one-sided boundary differences
+  // excite that mode (measured: a ±0.25 checkerboard on a 0.05 profile); the conservative staggered variant
+  // damps it. Assert: steady state reached, a profile that rises monotonically to the centre (no alternating
+  // differences) and is symmetric about it.
+  const Registry& reg = builtin_registry();
+  const auto scene = reg.scenes.create(json{{"name", "poiseuille-uniform"}, {"n_y", 48}}, "/scene");
+  const auto kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", scene->eta}}, "/kernel");
+  auto deconv = reg.deconvolvers.create(json{{"name", "landweber"}, {"order", 0}}, "/deconvolver");
+  auto quad = reg.quadratures.create(json{{"name", "exact"}}, "/quadrature");
+  MesoSolverOptions opt;
+  opt.scheme = "staggered";
+  MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
+  const MesoResult r = solver.run();
+  ASSERT_EQ(r.status, "converged") << r.message;
+  const Eigen::Index n = r.v.size();
+  for (Eigen::Index k = 0; k < n / 2; ++k) {
+    EXPECT_GT(r.v[k + 1], r.v[k]) << "node " << k;
+    EXPECT_NEAR(r.v[k], r.v[n - 1 - k], 1e-9 * r.v.maxCoeff()) << "node " << k;
+  }
+}

@@ -10,27 +10,6 @@ namespace closurelab {
 
 namespace {
 
-// Nodes of `axis` within `radius` of q (with periodic images) as (node, node − image of q); as in
-// core/averaging.cpp.
-template <class F>
-void for_nodes_near(const UniformMesh1D& axis, double q, double radius, F f) {
-  if (!axis.periodic) {
-    const int lo = std::max(0, static_cast<int>(std::ceil((q - radius - axis.origin) / axis.spacing)));
-    const int hi = std::min(axis.count - 1, static_cast<int>(std::floor((q + radius - axis.origin) / axis.spacing)));
-    for (int i = lo; i <= hi; ++i) f(i, axis.node(i) - q);
-    return;
-  }
-  const double last = axis.node(axis.count - 1);
-  const int kmin = static_cast<int>(std::floor((axis.origin - radius - q) / axis.period));
-  const int kmax = static_cast<int>(std::ceil((last + radius - q) / axis.period));
-  for (int k = kmin; k <= kmax; ++k) {
-    const double qi = q + k * axis.period;
-    const int lo = std::max(0, static_cast<int>(std::ceil((qi - radius - axis.origin) / axis.spacing)));
-    const int hi = std::min(axis.count - 1, static_cast<int>(std::floor((qi + radius - axis.origin) / axis.spacing)));
-    for (int i = lo; i <= hi; ++i) f(i, axis.node(i) - qi);
-  }
-}
-
 void add_entry(BondWeights& out, std::size_t first, int node, double w) {
   for (std::size_t e = first; e < out.size(); ++e)
     if (out[e].first == node) return void(out[e].second += w);
@@ -44,8 +23,8 @@ void append_bond_weights(const AveragingKernel& kernel, const TensorMesh2D& mesh
   const std::size_t first = out.size();
   const Vec2 mid = qj + 0.5 * d;
   const double reach = kernel.support_radius() + 0.5 * d.norm();
-  for_nodes_near(mesh.y, mid.y(), reach, [&](int jy, double oy) {
-    for_nodes_near(mesh.x, mid.x(), reach, [&](int ix, double ox) {
+  for_nodes_within(mesh.y, mid.y(), reach, [&](int jy, double oy) {
+    for_nodes_within(mesh.x, mid.x(), reach, [&](int ix, double ox) {
       const Vec2 node = mesh.node(ix, jy);
       const Vec2 shift = node - Vec2(ox, oy) - mid;  // the periodic image shift
       const double b = kernel.bond_integral(node, qj + shift, qj + shift + d);  // (A.1)
@@ -60,7 +39,7 @@ void append_bond_weights_x_integrated(const AveragingKernel& kernel, const Tenso
   const double mid = qj_y + 0.5 * d_y;
   const double reach = kernel.support_radius() + 0.5 * std::abs(d_y);
   const double phi0 = kernel.factor(0.0);
-  for_nodes_near(mesh.y, mid, reach, [&](int jy, double oy) {
+  for_nodes_within(mesh.y, mid, reach, [&](int jy, double oy) {
     // ∫ φ(x-part) dR_x = 1 for every s, so the x-integrated weight is the 1D bond integral of φ along y:
     // the 2D bond integral of a bond along y through the node's column, divided by φ(0).
     const double shift = mesh.y.node(jy) - oy - mid;

@@ -3,6 +3,8 @@
 set -euo pipefail
 packages=(cmake g++ make git libeigen3-dev libgsl-dev nlohmann-json3-dev libsuitesparse-dev libgtest-dev
           libbenchmark-dev libomp-dev python3)
+# The figures of scripts/reproduce.sh also need python3-matplotlib: `scripts/install_deps.sh --figures`.
+[ "${1:-}" = "--figures" ] && packages+=(python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -64,7 +64,7 @@ int list_command(int argc, char** argv) {
 int run_command(int argc, char** argv) {
   RunOptions opt;
   std::string spec_file;
-  for (int i = 0; i < argc; ++i) opt.command_line += (i ? " " : "") + std::string(argv[i]);
+  for (int i = 0; i < argc; ++i) opt.command_line.append(i ? " " : "").append(argv[i]);
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     auto need = [&](const char* what) -> std::string {

@@ -142,7 +142,9 @@ TEST_P(DeconvolverConformance, RectangularOperatorIsHandledOrRefusedClearly) {
   const DeconvolutionResult r = d->solve(p.b);
   EXPECT_EQ(r.x.size(), p.a.cols());
   EXPECT_TRUE(r.x.allFinite());
-  if (r.status == DeconvolutionStatus::numerical_issue) EXPECT_FALSE(r.stats.message.empty());
+  if (r.status == DeconvolutionStatus::numerical_issue) {
+    EXPECT_FALSE(r.stats.message.empty());
+  }
 }
 
 TEST_P(DeconvolverConformance, BadDataIsAConfigError) {

@@ -89,7 +89,7 @@ TEST(DeconvReconstruction, SamplesLinearFieldsExactlyAndWrapsPeriodicAxes) {
   for (int j = 0; j < m.ny(); ++j)
     for (int i = 0; i < m.nx(); ++i) v(m.index(i, j)) = 2.0 * m.x.node(i) - 3.0 * m.y.node(j) + 1.0;
   const Reconstruction r(m, 2, v);
-  for (const Vec2 p : {Vec2(0.3, 0.2), Vec2(0.71, 0.33), Vec2(m.x.node(4), m.y.node(2))})
+  for (const Vec2& p : {Vec2(0.3, 0.2), Vec2(0.71, 0.33), Vec2(m.x.node(4), m.y.node(2))})
     EXPECT_NEAR(r.sample(p), 2.0 * p.x() - 3.0 * p.y() + 1.0, 1e-14);
   const UniformMesh1D pm = UniformMesh1D::cell_centred(0, 1, 16, true);
   Eigen::VectorXd w(16);

@@ -23,22 +23,6 @@ ScanPoint point(double k, const Eigen::VectorXd& x, double rnorm, long matvecs, 
   return p;
 }
 
-// Takes the member that ends a fixed-count run.
-DeconvolutionResult take_final(const ScanPoint& p) {
-  DeconvolutionResult r;
-  r.x = p.solution();
-  r.stats.residual_norm = p.residual_norm;
-  r.stats.solution_norm = p.solution_norm;
-  r.stats.chosen_parameter = p.parameter;
-  r.stats.iterations = static_cast<int>(p.parameter);
-  r.cost.matvecs = p.matvecs;
-  if (!p.issue.empty()) {
-    r.status = DeconvolutionStatus::numerical_issue;
-    r.stats.message = p.issue;
-  }
-  return r;
-}
-
 class KrylovBase : public DeconvolverBase {
  public:
   KrylovBase(std::string name, RuleConfig rule, int iterations, int max_iterations, double tolerance)
@@ -50,7 +34,7 @@ class KrylovBase : public DeconvolverBase {
     DeconvolutionResult r;
     run(b, iterations_, tolerance_, [&](const ScanPoint& p) {
       if (!p.last && p.issue.empty()) return true;
-      r = take_final(p);
+      r = result_from_scan_point(p);
       return false;
     });
     return r;

@@ -92,4 +92,20 @@ inline ParamSpec safety_param() {
                       10.0);
 }
 
+// The result of a fixed-parameter run from the scan member that ends it (x, norms, parameter, cost, issue).
+inline DeconvolutionResult result_from_scan_point(const ScanPoint& p) {
+  DeconvolutionResult r;
+  r.x = p.solution();
+  r.stats.residual_norm = p.residual_norm;
+  r.stats.solution_norm = p.solution_norm;
+  r.stats.chosen_parameter = p.parameter;
+  r.stats.iterations = static_cast<int>(p.parameter);
+  r.cost.matvecs = p.matvecs;
+  if (!p.issue.empty()) {
+    r.status = DeconvolutionStatus::numerical_issue;
+    r.stats.message = p.issue;
+  }
+  return r;
+}
+
 }  // namespace closurelab

@@ -31,16 +31,7 @@ class LandweberRelaxed : public DeconvolverBase {
     DeconvolutionResult r;
     run(b, iterations_, [&](const ScanPoint& p) {
       if (!p.last && p.issue.empty()) return true;
-      r.x = p.solution();
-      r.stats.residual_norm = p.residual_norm;
-      r.stats.solution_norm = p.solution_norm;
-      r.stats.chosen_parameter = p.parameter;
-      r.stats.iterations = static_cast<int>(p.parameter);
-      r.cost.matvecs = p.matvecs;
-      if (!p.issue.empty()) {
-        r.status = DeconvolutionStatus::numerical_issue;
-        r.stats.message = p.issue;
-      }
+      r = result_from_scan_point(p);
       return false;
     });
     return r;

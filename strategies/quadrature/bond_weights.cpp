@@ -66,4 +66,17 @@ std::vector<std::pair<int, int>> component_indices(const std::vector<std::string
   return out;
 }
 
+std::map<std::string, Eigen::VectorXd> reduce_node_buffers(const std::vector<std::vector<double>>& buffers,
+                                                           int node_count, const std::vector<std::string>& components) {
+  const int nc = static_cast<int>(components.size());
+  std::map<std::string, Eigen::VectorXd> out;
+  for (int c = 0; c < nc; ++c) {
+    Eigen::VectorXd field = Eigen::VectorXd::Zero(node_count);
+    for (const auto& buf : buffers)
+      for (int n = 0; n < node_count; ++n) field[n] += buf[static_cast<std::size_t>(n) * nc + c];
+    out[components[c]] = field;
+  }
+  return out;
+}
+
 }  // namespace closurelab

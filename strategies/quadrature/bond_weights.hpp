@@ -3,6 +3,8 @@
 // factor ∫₀¹ ψ_η(s(x − q_k) + (1 − s)(x − q_j)) ds of (2.13) (Appendix A), tabulated once per bond by the
 // stress quadratures (positions are intact, §5.2). Images as in core/averaging.cpp (for_nodes_within), so the
 // exact quadrature reproduces average_particles' interaction stress to round-off.
+#include <Eigen/Core>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,6 +31,10 @@ void append_bond_weights_x_integrated(const AveragingKernel& kernel, const Tenso
 
 // Throws ConfigError when the mesh's periodicity differs from the box's.
 void check_mesh_matches_box(const TensorMesh2D& mesh, const PeriodicBox& box);
+
+// Sums per-thread node buffers (node-major, `components.size()` values per node) into one field per component.
+std::map<std::string, Eigen::VectorXd> reduce_node_buffers(const std::vector<std::vector<double>>& buffers,
+                                                           int node_count, const std::vector<std::string>& components);
 
 // Component names → (row, column) index pairs ("xx", "xy", "yx", "yy"; T_ab = Σ f_a d_b).
 std::vector<std::pair<int, int>> component_indices(const std::vector<std::string>& components);

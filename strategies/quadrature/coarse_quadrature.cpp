@@ -211,13 +211,7 @@ std::map<std::string, Eigen::VectorXd> CoarseQuadrature::evaluate(const Velocity
       }
     }
   }
-  std::map<std::string, Eigen::VectorXd> out;
-  for (int c = 0; c < nc; ++c) {
-    Eigen::VectorXd field = Eigen::VectorXd::Zero(node_count_);
-    for (const auto& buf : acc)
-      for (int n = 0; n < node_count_; ++n) field[n] += buf[static_cast<std::size_t>(n) * nc + c];
-    out[components_[c]] = field;
-  }
+  auto out = reduce_node_buffers(acc, node_count_, components_);
   ++cost_.evaluations;
   cost_.pair_forces += static_cast<long>(pairs_.size());
   cost_.evaluate_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

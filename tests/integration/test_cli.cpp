@@ -2,6 +2,7 @@
 // provenance and resumes; bad input gives a clear message naming the JSON path, exit code 2 and no table.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -20,7 +21,8 @@ struct Outcome {
   std::string err;
 };
 
-const fs::path work = fs::temp_directory_path() / "closurelab_cli_test";
+// One folder per test process: ctest runs the cases in parallel processes.
+const fs::path work = fs::temp_directory_path() / ("closurelab_cli_test_" + std::to_string(getpid()));
 
 Outcome run_cli(const std::string& args) {
   const fs::path err = work / "stderr.txt";

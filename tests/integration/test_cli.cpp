@@ -24,6 +24,13 @@ struct Outcome {
 // One folder per test process: ctest runs the cases in parallel processes.
 const fs::path work = fs::temp_directory_path() / ("closurelab_cli_test_" + std::to_string(getpid()));
 
+// Removes this process's folder when the tests end.
+class RemoveWorkFolder : public ::testing::Environment {
+ public:
+  void TearDown() override { fs::remove_all(work); }
+};
+const auto* const remove_work_folder = ::testing::AddGlobalTestEnvironment(new RemoveWorkFolder);
+
 Outcome run_cli(const std::string& args) {
   const fs::path err = work / "stderr.txt";
   const std::string cmd = std::string(CLOSURELAB_BINARY_DIR) + "/experiments/closurelab " + args + " 2>" + err.string() + " >" +

@@ -105,6 +105,9 @@ MesoFields average_particles(const ParticleSystem& ps, const PeriodicBox& box, c
   if (req.interaction) {
     std::vector<std::pair<int, int>> comps;
     for (const auto& c : req.components) comps.push_back(component_index(c));
+    for (std::size_t a = 0; a < comps.size(); ++a)
+      for (std::size_t b = 0; b < a; ++b)
+        if (comps[a] == comps[b]) throw ConfigError("", "tensor component '" + req.components[a] + "' requested twice");
     const int nc = static_cast<int>(comps.size());
     const double r = kernel.support_radius();
     std::vector<std::vector<double>> acc(omp_get_max_threads(), std::vector<double>(nn * nc, 0.0));

@@ -64,8 +64,16 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
   if (opt_.scheme != "paper" && opt_.scheme != "staggered")
     throw ConfigError("/solver/scheme", "unknown scheme '" + opt_.scheme + "'; known: paper, staggered");
   op_ = make_averaging_operator_1d(kernel, coarse_, fine_, opt_.discretization);
-  deconvolver_.setup(op_);
-  quadrature_.setup(scene, kernel, column(scene, stress_axis_), {"xy"});
+  try {
+    deconvolver_.setup(op_);
+  } catch (const ConfigError& e) {
+    throw ConfigError("/closure/deconvolver" + e.path(), e.message());  // strategies report relative paths
+  }
+  try {
+    quadrature_.setup(scene, kernel, column(scene, stress_axis_), {"xy"});
+  } catch (const ConfigError& e) {
+    throw ConfigError("/quadrature" + e.path(), e.message());
+  }
   // F̄ (2.14) and ρ̄ (2.8) of the lattice at the coarse nodes.
   AveragingRequest req;
   req.external = true;
@@ -243,6 +251,10 @@ MesoResult MesoSolver::run() {
         opt_.progress(os.str());
       }
     }
+  }
+  if (res.status != "numerical_issue" && !v_.allFinite()) {
+    res.status = "numerical_issue";
+    res.message = "coarse velocity is not finite";
   }
   res.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
   res.y = coarse_.nodes();

@@ -154,6 +154,8 @@ void register_scenes(Registry& r) {
         const double support = SmoothingKernel::from_name(s->smoothing_kernel, s->h).support();
         if (s->box.lx < 3.0 * (support + 0.5 * s->dx))
           throw ConfigError("/n_x", "the periodic strip (n_x epsilon') must hold 3 SPH supports plus the list skin");
+        if (ly < 3.0 * (support + 0.5 * s->dx))
+          throw ConfigError("/n_y", "the periodic height must hold 3 SPH supports plus the list skin; raise n_y");
         if (s->eta * 6.0 > ly) throw ConfigError("/eta_over_ly", "eta' too large for the domain: need 6 eta' <= L_y");
         const double g = p.at("g").get<double>(), nu = s->phase_viscosity[0] / s->rho0;
         const double kw = 2.0 * M_PI * p.at("k").get<int>() / ly;
@@ -166,7 +168,7 @@ void register_scenes(Registry& r) {
       });
   ParamSchema periodic = channel_schema();
   periodic.push_back(number_param("amplitude", 5.0, "A in g [1 + A sin(n pi (y - l1)/(l2 - l1))] (par. 6)", {}, {}));
-  periodic.push_back(number_param("n", 4.0, "n in the periodic force (half-waves across the channel)", 0.0, {}, true));
+  periodic.push_back(integer_param("n", 4, "n in the periodic force (half-waves across the channel; (D.3) needs an integer)", 1, 1000));
   r.scenes.add({"poiseuille-periodic", "Poiseuille channel driven by the periodic force of par. 6 / App. D", periodic},
                [](const json& p) {
                  auto s = std::make_unique<Scene>(make_channel("poiseuille-periodic", p, ""));

@@ -88,11 +88,10 @@ void SphEngine::compute_density() {
   for (int a : active_) n_[a] = ps_.fixed[a] ? n_static_[a] : w0;
   const std::size_t np = pairs_.size(), n = ps_.size();
   const int nthreads = static_cast<int>(thread_buf_.size());
+  for (auto& b : thread_buf_) b.assign(n, 0.0);  // all of them: the team may have fewer threads
 #pragma omp parallel num_threads(nthreads)
   {
-    const int t = omp_get_thread_num();
-    auto& buf = thread_buf_[t];
-    buf.assign(n, 0.0);
+    auto& buf = thread_buf_[omp_get_thread_num()];
 #pragma omp for schedule(static)
     for (std::size_t p = 0; p < np; ++p) {
       const int i = pairs_.i[p], j = pairs_.j[p];
@@ -143,11 +142,10 @@ void SphEngine::compute_accelerations() {
   std::vector<double> p_over_n2(n, 0.0);
   for (int a : active_) p_over_n2[a] = pressure(a) / (n_[a] * n_[a]);
   const int nthreads = static_cast<int>(thread_buf_.size());
+  for (auto& b : thread_buf_) b.assign(2 * n, 0.0);
 #pragma omp parallel num_threads(nthreads)
   {
-    const int t = omp_get_thread_num();
-    auto& buf = thread_buf_[t];
-    buf.assign(2 * n, 0.0);
+    auto& buf = thread_buf_[omp_get_thread_num()];
 #pragma omp for schedule(static)
     for (std::size_t p = 0; p < np; ++p) {
       const double F = pair_f_[p];

@@ -45,6 +45,7 @@ class SphEngine {
   std::int64_t pair_evaluations() const { return pair_evaluations_; }
   std::int64_t list_rebuilds() const { return list_rebuilds_; }
   std::size_t pair_count() const { return pairs_.size(); }
+  std::size_t active_count() const { return active_.size(); }  // moving particles and the walls they reach
   double max_speed() const;
 
  private:

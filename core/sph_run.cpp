@@ -85,10 +85,16 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
       }
     }
   }
+  if (res.status != "numerical_issue")
+    for (int a : engine.moving())
+      if (!std::isfinite(ps.vx[a]) || !std::isfinite(ps.vy[a]) || !std::isfinite(ps.x[a]) || !std::isfinite(ps.y[a])) {
+        res.status = "numerical_issue";  // also between the periodic checks, e.g. at the target time
+        break;
+      }
   res.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
   res.pair_evaluations = engine.pair_evaluations();
   res.list_rebuilds = engine.list_rebuilds();
-  res.active_particles = static_cast<std::int64_t>(engine.number_density().size());
+  res.active_particles = static_cast<std::int64_t>(engine.active_count());
   return res;
 }
 

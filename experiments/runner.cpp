@@ -100,6 +100,7 @@ std::vector<MatrixCell> expand_matrix(const json& spec) {
         std::string cell_label = label;
         for (const auto& [k, v] : list[i].items()) {
           if (k == "label") {
+            if (!v.is_string()) throw ConfigError(at + "/label", "expected a string");
             cell_label = v.get<std::string>() + (label.empty() ? "" : ", " + label);
             continue;
           }

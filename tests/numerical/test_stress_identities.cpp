@@ -11,31 +11,14 @@
 #include "core/scene.hpp"
 #include "core/sph_engine.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
+#include "tests/numerical/test_quadrature_support.hpp"
 
 using namespace closurelab;
 
-namespace {
-
-// A fully periodic, wall-free box of n x n particles with jittered positions and random velocities.
-Scene periodic_scene(int n, double length) {
-  Scene s;
-  s.name = "periodic-test";
-  s.nx = s.ny = n;
-  s.dx = length / n;
-  s.box = PeriodicBox{length, length, true, true};
-  s.has_walls = false;
-  s.force_x = [](double) { return 0.0; };
-  s.h = s.dx;
-  s.sound_speed = 1.0;
-  s.background_pressure = 0.5;
-  s.phase_viscosity = {1.0, 2.5};
-  return s;
-}
-
-}  // namespace
 
 TEST(InteractionStress, VirialIdentityOverAPeriodicDomain) {
-  const Scene s = periodic_scene(16, 0.5);
+  Scene s = quadrature_test::periodic_box(16, 0.5);
+  s.phase_viscosity = {1.0, 2.5};  // two phases: pair viscosity μ_i + μ_j with unlike particles
   ParticleSystem ps = s.make_particles();
   std::mt19937 rng(12345);
   std::uniform_real_distribution<double> jitter(-0.15 * s.dx, 0.15 * s.dx), vel(-1.0, 1.0);

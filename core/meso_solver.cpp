@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "core/averaging.hpp"
@@ -82,45 +83,71 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
   rho_bar_ = f.rho;
   accel_force_ = f.fx.cwiseQuotient(f.rho);
   v_ = Eigen::VectorXd::Zero(coarse_.count);
-  if (opt_.wall_constraint_forces && scene.has_walls) {
-    lattice_ = lattice;
-    engine_ = std::make_unique<SphEngine>(scene, lattice_);
-    const double reach = 2.0 * scene.h * 3.0;  // wall particles that interact with fluid particles
-    for (std::size_t a = 0; a < lattice_.size(); ++a)
-      if (lattice_.fixed[a] && (lattice_.y[a] > scene.wall_lo - reach && lattice_.y[a] < scene.wall_hi + reach))
-        wall_ids_.push_back(static_cast<std::int32_t>(a));
-    wall_weights_ = Eigen::MatrixXd::Zero(coarse_.count, static_cast<Eigen::Index>(wall_ids_.size()));
-    const double r = kernel.support_radius();
-    for (std::size_t w = 0; w < wall_ids_.size(); ++w) {
-      const int a = wall_ids_[w];
-      double wx = 0.0;  // the column sits at x = 0; sum the periodic images in x
-      for (int k = static_cast<int>(std::floor((-r - lattice_.x[a]) / scene.box.lx));
-           k <= static_cast<int>(std::ceil((r - lattice_.x[a]) / scene.box.lx)); ++k)
-        wx += kernel.factor(lattice_.x[a] + k * scene.box.lx);
-      for (int n = 0; n < coarse_.count; ++n)
-        wall_weights_(n, static_cast<Eigen::Index>(w)) = wx * kernel.factor(coarse_.node(n) - lattice_.y[a]);
+  if (opt_.wall_constraint_forces && scene.has_walls) build_constraint_map();
+}
+
+// F_c is affine in the fluid velocities (positions stay on the lattice, so the pressure part and the
+// factor (μ_i+μ_j)F/(n_i n_j) of (5.1) are fixed), and in an x-invariant flow the reconstruction is a
+// function of y alone: F_c = c₀ + M v(rows) over the fluid rows that reach a wall particle. M is probed
+// once, one row at a time, with the real pair forces (5.1); each step then costs O(nodes × rows).
+void MesoSolver::build_constraint_map() {
+  ParticleSystem lattice = scene_.make_particles();
+  SphEngine engine(scene_, lattice);
+  const double reach = SmoothingKernel::from_name(scene_.smoothing_kernel, scene_.h).support();
+  std::vector<std::int32_t> walls;
+  std::map<long, std::vector<std::int32_t>> rows;  // fluid rows within reach of a wall, by lattice row index
+  for (std::size_t a = 0; a < lattice.size(); ++a) {
+    const double y = lattice.y[a];
+    if (lattice.fixed[a]) {
+      if (y > scene_.wall_lo - reach && y < scene_.wall_hi + reach) walls.push_back(static_cast<std::int32_t>(a));
+    } else if (y < scene_.wall_lo + reach || y > scene_.wall_hi - reach) {
+      rows[std::lround(y / scene_.dx - 0.5)].push_back(static_cast<std::int32_t>(a));
     }
+  }
+  // ψ(node − q_i) for the wall particles, the column at x = 0 summing the periodic images in x.
+  Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(coarse_.count, static_cast<Eigen::Index>(walls.size()));
+  const double r = kernel_.support_radius();
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const int a = walls[w];
+    double wx = 0.0;
+    for (int k = static_cast<int>(std::floor((-r - lattice.x[a]) / scene_.box.lx));
+         k <= static_cast<int>(std::ceil((r - lattice.x[a]) / scene_.box.lx)); ++k)
+      wx += kernel_.factor(lattice.x[a] + k * scene_.box.lx);
+    for (int n = 0; n < coarse_.count; ++n)
+      weights(n, static_cast<Eigen::Index>(w)) = wx * kernel_.factor(coarse_.node(n) - lattice.y[a]);
+  }
+  const auto force_on_walls = [&]() {  // F_c = −Σ_walls f_i^int ψ(node − q_i) for the current velocities
+    std::vector<double> net(lattice.size(), 0.0);
+    for (const PairForce& p : engine.pair_forces()) {
+      net[p.j] += p.f.x();
+      net[p.k] -= p.f.x();
+    }
+    Eigen::VectorXd c(static_cast<Eigen::Index>(walls.size()));
+    for (std::size_t w = 0; w < walls.size(); ++w) c[static_cast<Eigen::Index>(w)] = -net[walls[w]];
+    return Eigen::VectorXd(weights * c);
+  };
+  constraint_offset_ = force_on_walls();
+  constraint_map_ = Eigen::MatrixXd::Zero(coarse_.count, static_cast<Eigen::Index>(rows.size()));
+  Eigen::Index col = 0;
+  for (const auto& [row, ids] : rows) {
+    for (int a : ids) lattice.vx[a] = 1.0;
+    constraint_map_.col(col) = force_on_walls() - constraint_offset_;
+    for (int a : ids) lattice.vx[a] = 0.0;
+    constraint_rows_.emplace_back(0.0, lattice.y[ids.front()]);
+    ++col;
   }
 }
 
 Eigen::VectorXd MesoSolver::constraint_force() {
-  std::vector<Vec2> pts;
-  std::vector<std::int32_t> fluid;
-  for (std::size_t a = 0; a < lattice_.size(); ++a)
-    if (!lattice_.fixed[a]) fluid.push_back(static_cast<std::int32_t>(a)), pts.emplace_back(lattice_.x[a], lattice_.y[a]);
-  const Eigen::Matrix2Xd v = sample_reconstruction(pts);
-  for (std::size_t k = 0; k < fluid.size(); ++k) {
-    lattice_.vx[fluid[k]] = v(0, static_cast<Eigen::Index>(k));
-    lattice_.vy[fluid[k]] = v(1, static_cast<Eigen::Index>(k));
-  }
-  std::vector<double> net(lattice_.size(), 0.0);  // x-force on each particle
-  for (const PairForce& p : engine_->pair_forces()) {
-    net[p.j] += p.f.x();
-    net[p.k] -= p.f.x();
-  }
-  Eigen::VectorXd c(static_cast<Eigen::Index>(wall_ids_.size()));
-  for (std::size_t w = 0; w < wall_ids_.size(); ++w) c[static_cast<Eigen::Index>(w)] = -net[wall_ids_[w]];
-  return wall_weights_ * c;
+  const Eigen::Matrix2Xd v = sample_reconstruction(constraint_rows_);
+  return constraint_offset_ + constraint_map_ * v.row(0).transpose();
+}
+
+Eigen::VectorXd MesoSolver::wall_constraint_force() {
+  if (constraint_map_.size() == 0) return Eigen::VectorXd::Zero(coarse_.count);
+  std::string issue;
+  if (!close_stress(issue)) throw NumericalError(issue);
+  return constraint_force();
 }
 
 void MesoSolver::set_velocity(const Eigen::VectorXd& v) {
@@ -150,6 +177,12 @@ bool MesoSolver::close_stress(std::string& issue) {
   const DeconvolutionResult r = deconvolver_.solve(b, opt_.noise_level);
   matvecs_ += r.cost.matvecs;
   reconstruction_ = r.x;
+  // Coarse–coarse: the solution nodes on l1 and l2 lie on the wall surfaces, where the particle velocity is
+  // zero (no slip, the particle-level content of (5.6)). The series (2I − A)v̄ … would put −(A v̄) there, a
+  // backward-moving layer that the wall particles then drag forward: with the wall constraint forces that
+  // feedback grows without bound (measured). Pin them.
+  if (!periodic_ && opt_.discretization == Discretization::coarse_coarse && reconstruction_.size() == v_.size())
+    reconstruction_[0] = reconstruction_[reconstruction_.size() - 1] = 0.0;
   const auto t1 = clock::now();
   deconv_seconds_ += std::chrono::duration<double>(t1 - t0).count();
   if (!reconstruction_.allFinite()) {
@@ -189,7 +222,7 @@ bool MesoSolver::step(double dt, std::string& issue) {
       }
     }
   }
-  if (engine_) dtdy += constraint_force();
+  if (constraint_map_.size() > 0) dtdy += constraint_force();
   for (int k = 0; k < n; ++k) v_[k] += dt * (dtdy[k] / rho_bar_[k] + accel_force_[k]);
   if (!periodic_) v_[0] = v_[n - 1] = 0.0;  // (5.14)
   return true;

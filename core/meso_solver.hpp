@@ -41,7 +41,7 @@ struct MesoSolverOptions {
   // Wall particles are held at rest by constraint forces that (5.8) does not contain (DESIGN.md §6). When
   // true, their average F_c(y) = −Σ_walls f_i^int ψ(y − q_i), with f_i^int the pair forces (5.1) on wall
   // particle i under the reconstructed velocities, is added to the coarse balance. Costs one pair-force
-  // sweep of the lattice per step (O(N)).
+  // sweep of the lattice per row next to a wall at setup; per step, O(nodes × those rows).
   bool wall_constraint_forces = false;
 };
 
@@ -69,6 +69,9 @@ class MesoSolver {
   const Eigen::VectorXd& velocity() const { return v_; }
   const UniformMesh1D& coarse_mesh() const { return coarse_; }
   Eigen::Matrix2Xd sample_reconstruction(const std::vector<Vec2>& points);
+  // The averaged wall constraint forces at the coarse nodes for the current v̄ (deconvolves first); zero
+  // when the option is off.
+  Eigen::VectorXd wall_constraint_force();
   // Sets v̄ (e.g. an initial state other than rest); wall nodes are forced to zero.
   void set_velocity(const Eigen::VectorXd& v);
   // One step of size dt; returns false on a numerical issue (message in `issue`).
@@ -78,6 +81,7 @@ class MesoSolver {
  private:
   bool close_stress(std::string& issue);  // deconvolve + quadrature → t_
   Eigen::VectorXd constraint_force();     // F_c at the coarse nodes for the current reconstruction
+  void build_constraint_map();
 
   const Scene& scene_;
   const AveragingKernel& kernel_;
@@ -88,10 +92,10 @@ class MesoSolver {
   ForwardOperator op_;
   bool periodic_ = false;
   Eigen::VectorXd v_, accel_force_, rho_bar_, t_, reconstruction_;
-  ParticleSystem lattice_;                // for the constraint forces
-  std::unique_ptr<SphEngine> engine_;
-  Eigen::MatrixXd wall_weights_;          // ψ(node_k − q_i) for the wall particles i near the fluid
-  std::vector<std::int32_t> wall_ids_;
+  // The wall constraint forces as an affine map of the reconstruction on the fluid rows next to the walls.
+  Eigen::VectorXd constraint_offset_;
+  Eigen::MatrixXd constraint_map_;
+  std::vector<Vec2> constraint_rows_;  // one sample point (x = 0, y of the row) per column of the map
   long matvecs_ = 0;
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
 };

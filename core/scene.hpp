@@ -3,12 +3,15 @@
 // components the engine must compute, and the analytic steady solution where one exists.
 // Scenes are registered by name in the registry's "scene" family (core/scenes.cpp).
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/equation_of_state.hpp"
 #include "core/mesh.hpp"
 #include "core/params.hpp"
 #include "core/particles.hpp"
+#include "core/sph_pair_force.hpp"
 
 namespace closurelab {
 
@@ -34,13 +37,23 @@ struct Scene {
   // Material and forcing (model units).
   double rho0 = 1.0;
   std::vector<double> phase_viscosity{1.0};
+  // The phase at height y (index into phase_viscosity), for fluid and wall particles alike (walls take the
+  // phase of the fluid next to them). Empty: phase 0 everywhere.
+  std::function<int(double y)> phase_at;
+  // Heights of the phase interfaces inside the channel (between lattice rows), ascending; empty if one phase.
+  std::vector<double> interfaces;
+  // μ_ij of (5.1) for unlike particles (core/sph_pair_force.hpp).
+  PairViscosityMean pair_viscosity_mean = PairViscosityMean::Arithmetic;
   std::function<double(double y)> force_x;  // body force per unit mass along x
 
   // SPH discretization.
   std::string smoothing_kernel = "quintic";
   double h = 0.0;            // smoothing length
   double sound_speed = 0.0;  // >= 10x the peak velocity
+  // Equation of state: the weakly compressible P = c²(m n − ρ0) + background_pressure unless van_der_waals
+  // is set (7.1) (core/equation_of_state.hpp).
   double background_pressure = 0.0;
+  std::optional<VanDerWaalsEos> van_der_waals;
 
   // What the engine computes: the flow is x-invariant (fields depend on y only) and the stress
   // components needed (Poiseuille: T_xy only, §5.2).
@@ -56,12 +69,24 @@ struct Scene {
   ParticleSystem make_particles() const;
   double particle_mass() const;
   double max_viscosity() const;
-  // Viscosity of the fluid at a point (single-phase scenes: the one phase).
+  int phase(double y) const { return phase_at ? phase_at(y) : 0; }
+  // Viscosity of the phase at a point (single-phase scenes: the one phase).
   double viscosity_at(const Vec2& point) const;
+  // The pressure of a particle of mass m at number density n in a like pair (k_ij = 1 in (7.1)).
+  double pressure(double n, double mass) const {
+    return van_der_waals ? van_der_waals->pressure(n, 1.0)
+                         : weakly_compressible_pressure(mass * n, rho0, sound_speed, background_pressure);
+  }
+  // What an unlike pair adds to each of P_i/n_i² and P_j/n_j² in (5.1): (1 − k*) c_2 under (7.1), else 0.
+  double unlike_pair_excess_over_n2() const { return van_der_waals ? van_der_waals->unlike_excess_over_n2() : 0.0; }
   // The lattice number density n* = rho0 / m and the constant pressure P* = P(n*) of the incompressible
-  // closure (§5.2: positions are kept intact).
+  // closure (§5.2: positions are kept intact), of like pairs.
   double lattice_number_density() const { return rho0 / particle_mass(); }
-  double rest_pressure() const { return background_pressure; }
+  double rest_pressure() const {
+    if (!van_der_waals) return background_pressure;
+    const double m = particle_mass();
+    return van_der_waals->pressure(rho0 / m, 1.0);
+  }
 };
 
 }  // namespace closurelab

@@ -3,6 +3,7 @@
 
 #include "core/analytic.hpp"
 #include "core/errors.hpp"
+#include "core/layered_scene.hpp"
 #include "core/registry.hpp"
 #include "core/scene.hpp"
 #include "core/sph_kernel.hpp"
@@ -14,7 +15,8 @@ ParticleSystem Scene::make_particles() const {
   const double m = particle_mass();
   for (int j = 0; j < ny; ++j) {
     const double y = (j + 0.5) * dx;
-    for (int i = 0; i < nx; ++i) ps.add((i + 0.5) * dx, y, m, 0, is_wall(y));
+    const int ph = phase(y);
+    for (int i = 0; i < nx; ++i) ps.add((i + 0.5) * dx, y, m, ph, is_wall(y));
   }
   return ps;
 }
@@ -35,7 +37,7 @@ double Scene::max_viscosity() const {
   return m;
 }
 
-double Scene::viscosity_at(const Vec2&) const { return phase_viscosity.at(0); }
+double Scene::viscosity_at(const Vec2& point) const { return phase_viscosity.at(phase(point.y())); }
 
 namespace {
 
@@ -111,6 +113,7 @@ void finish_sound_speed(Scene& s) {
 }  // namespace
 
 void register_scenes(Registry& r) {
+  register_layered_scene(r);
   r.scenes.add({"poiseuille-uniform", "Poiseuille flow between walls at 3 eta' and L_y - 3 eta', uniform force (par. 5)",
                 channel_schema()},
                [](const json& p) {

@@ -49,6 +49,7 @@ SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
       throw ConfigError("", "particle phase " + std::to_string(ph) + " has no viscosity");
     mu_[a] = scene.phase_viscosity[ph];
   }
+  unlike_excess_ = scene.unlike_pair_excess_over_n2();
   thread_buf_.resize(omp_get_max_threads());
   // The ghost-velocity wall multiplies the viscous coupling of a fluid–wall pair by β <= 1 + d_wall/d_fluid;
   // with the wall between lattice rows, d_fluid >= ε'/2 and d_wall < support.
@@ -116,9 +117,17 @@ void SphEngine::compute_density() {
   pair_evaluations_ += static_cast<std::int64_t>(np);
 }
 
-double SphEngine::pressure(std::int32_t a) const {
-  const double c = scene_.sound_speed;
-  return c * c * (ps_.mass[a] * n_[a] - scene_.rho0) + scene_.background_pressure;
+double SphEngine::pressure(std::int32_t a) const { return scene_.pressure(n_[a], ps_.mass[a]); }
+
+Vec2 SphEngine::pair_force(std::size_t p, double p_over_n2_i, double p_over_n2_j) const {
+  const int i = pairs_.i[p], j = pairs_.j[p];
+  if (ps_.phase[i] != ps_.phase[j]) {  // unlike pair: its k_ij in both pressures of (5.1) with (7.1)
+    p_over_n2_i += unlike_excess_;
+    p_over_n2_j += unlike_excess_;
+  }
+  const double mu_ij = pair_viscosity(mu_[i], mu_[j], scene_.pair_viscosity_mean);
+  return sph_pair_force(p_over_n2_i, p_over_n2_j, mu_ij, n_[i], n_[j], pair_f_[p], Vec2(pair_dx_[p], pair_dy_[p]),
+                        relative_velocity(i, j));
 }
 
 Vec2 SphEngine::relative_velocity(std::int32_t a, std::int32_t b) const {
@@ -151,8 +160,7 @@ void SphEngine::compute_accelerations() {
       const double F = pair_f_[p];
       if (F == 0.0) continue;
       const int i = pairs_.i[p], j = pairs_.j[p];
-      const Vec2 f = sph_pair_force(p_over_n2[i], p_over_n2[j], mu_[i], mu_[j], n_[i], n_[j], F,
-                                    Vec2(pair_dx_[p], pair_dy_[p]), relative_velocity(i, j));
+      const Vec2 f = pair_force(p, p_over_n2[i], p_over_n2[j]);
       buf[i] += f.x();
       buf[n + i] += f.y();
       buf[j] -= f.x();
@@ -213,8 +221,7 @@ std::vector<PairForce> SphEngine::pair_forces() {
     if (F == 0.0) continue;
     const int i = pairs_.i[p], j = pairs_.j[p];
     const Vec2 q_ij(pair_dx_[p], pair_dy_[p]);
-    const Vec2 f = sph_pair_force(pressure(i) / (n_[i] * n_[i]), pressure(j) / (n_[j] * n_[j]), mu_[i], mu_[j], n_[i],
-                                  n_[j], F, q_ij, relative_velocity(i, j));
+    const Vec2 f = pair_force(p, pressure(i) / (n_[i] * n_[i]), pressure(j) / (n_[j] * n_[j]));
     out.push_back({i, j, -q_ij, f});
   }
   return out;

@@ -1,7 +1,8 @@
 #pragma once
 // The direct SPH model: Newton's equations (2.1)–(2.3) with the pair force (5.1), Morris's viscous term
-// with (μ_i + μ_j), a weakly compressible equation of state, zero-velocity (5.3) or ghost-velocity walls,
-// and a body force. Symmetric pair evaluation over a Verlet pair list (cell-list search with a skin),
+// with the pair viscosity μ_ij (μ_i + μ_j, or the harmonic mean for unlike particles), the scene's equation of
+// state (weakly compressible, or van der Waals (7.1) with k_ij per pair), zero-velocity (5.3) or
+// ghost-velocity walls, and a body force. Symmetric pair evaluation over a Verlet pair list (cell-list search with a skin),
 // OpenMP over pairs with per-thread accumulators. Only the particles a scene needs are stepped: wall
 // particles farther than the interaction range from every fluid particle take no part.
 #include <cstdint>
@@ -52,6 +53,8 @@ class SphEngine {
   void rebuild_pairs_if_needed();
   void compute_density();
   double pressure(std::int32_t a) const;
+  // (5.1) for pair p of the list at the current densities, given the like-pair P/n² of its two particles.
+  Vec2 pair_force(std::size_t p, double p_over_n2_i, double p_over_n2_j) const;
   // Relative velocity used by the viscous term of pair (a, b) (ghost velocities for fluid–wall pairs).
   Vec2 relative_velocity(std::int32_t a, std::int32_t b) const;
 
@@ -59,6 +62,7 @@ class SphEngine {
   ParticleSystem& ps_;
   SmoothingKernel w_;
   double skin_, mass_, viscous_stiffening_ = 1.0;
+  double unlike_excess_ = 0.0;  // added to P/n² of both particles of an unlike pair ((7.1) with k*)
   std::vector<std::int32_t> active_, moving_;
   std::vector<double> n_static_;  // wall–wall part of wall densities (constant: walls do not move)
   std::vector<double> n_, ax_, ay_, x_built_, y_built_;

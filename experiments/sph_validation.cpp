@@ -2,15 +2,20 @@
 // (or a target time), averaged onto a column mesh, and compared with the analytic solution (5.15)/(D.3)
 // and its Gaussian average; errors in the interior and in the wall band (nodes whose window reaches
 // into a wall) separately, the effective wall position, the convective stress (App. B), and the cost.
+// Scenes with phase interfaces (layered-two-phase, §7) add errors near/away from the interfaces and the
+// final interface check (particles outside their phase region, row displacements, densities).
 #include "experiments/sph_validation.hpp"
 
 #include <Eigen/Dense>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "core/analytic.hpp"
 #include "core/averaging.hpp"
 #include "core/metrics.hpp"
+#include "core/sph_engine.hpp"
+#include "core/sph_kernel.hpp"
 #include "core/sph_run.hpp"
 #include "experiments/cell_config.hpp"
 #include "experiments/direct_reference.hpp"
@@ -46,6 +51,69 @@ ParabolaFit fit_parabola(const std::vector<double>& y, const std::vector<double>
   const double ym = -c[1] / (2.0 * c[2]);
   f.peak = c[0] + c[1] * ym + c[2] * ym * ym;
   return f;
+}
+
+double distance_to_interface(const Scene& scene, double y) {
+  double d = std::numeric_limits<double>::infinity();
+  for (double yi : scene.interfaces) d = std::min(d, std::abs(y - yi));
+  return d;
+}
+
+// The final state of a multi-phase scene against its initial phase layout: how far any fluid particle has
+// strayed from the region of its phase (0 if every particle's phase still matches phase_at of its height),
+// the largest y-displacement from its lattice row, and the density deviation (m n − ρ0)/ρ0 of the fluid
+// particles within one SPH support of an interface and of the rest. All lengths in lattice spacings ε'.
+json interface_check(const Scene& scene, const ParticleSystem& final_state, double support) {
+  const ParticleSystem initial = scene.make_particles();  // the engine keeps the particle order
+  ParticleSystem probe = final_state;
+  SphEngine engine(scene, probe);
+  engine.compute_accelerations();
+  const std::vector<double>& n = engine.number_density();
+  double outside = 0.0, shift = 0.0, near_shift = 0.0;
+  double near_min = std::numeric_limits<double>::infinity(), near_max = -near_min, away_min = near_min,
+         away_max = -near_min;
+  int strayed = 0;
+  for (std::size_t a = 0; a < final_state.size(); ++a) {
+    if (final_state.fixed[a]) continue;
+    const double y = final_state.y[a];
+    const double dy = std::abs(y - initial.y[a]) / scene.dx;
+    shift = std::max(shift, dy);
+    if (scene.phase(y) != final_state.phase[a]) {
+      ++strayed;
+      outside = std::max(outside, distance_to_interface(scene, y) / scene.dx);
+    }
+    const double dev = (final_state.mass[a] * n[a] - scene.rho0) / scene.rho0;
+    if (distance_to_interface(scene, initial.y[a]) < support) {
+      near_shift = std::max(near_shift, dy);
+      near_min = std::min(near_min, dev);
+      near_max = std::max(near_max, dev);
+    } else {
+      away_min = std::min(away_min, dev);
+      away_max = std::max(away_max, dev);
+    }
+  }
+  json out = {{"count", scene.interfaces.size()},
+              {"particles_outside_phase_region", strayed},
+              {"max_distance_outside_phase_region_dx", outside},
+              {"max_y_displacement_dx", shift},
+              {"max_y_displacement_near_interfaces_dx", near_shift},
+              {"density_deviation_near_interfaces", {{"min", near_min}, {"max", near_max}}},
+              {"density_deviation_away_from_interfaces", {{"min", away_min}, {"max", away_max}}}};
+  if (scene.van_der_waals) {
+    const double n0 = scene.lattice_number_density();
+    const VanDerWaalsEos& e = *scene.van_der_waals;
+    out["van_der_waals"] = {{"kT", e.kt},
+                            {"c1", e.c1},
+                            {"c2", e.c2},
+                            {"k_star", e.k_star},
+                            {"n0", n0},
+                            {"rest_pressure", e.pressure(n0, 1.0)},
+                            {"sound_speed_at_n0", std::sqrt(e.dpressure_dn(n0, 1.0) / scene.particle_mass())},
+                            {"interface_pressure_jump", e.interface_pressure_jump(n0)},
+                            {"interface_pressure_jump_over_rho_c2",
+                             e.interface_pressure_jump(n0) / (scene.rho0 * scene.sound_speed * scene.sound_speed)}};
+  }
+  return out;
 }
 
 class SphValidation : public ExperimentKind {
@@ -84,12 +152,15 @@ class SphValidation : public ExperimentKind {
                             {"l1", scene->wall_lo},      {"l2", scene->wall_hi},
                             {"h", scene->h},             {"sound_speed", scene->sound_speed},
                             {"analytic_peak", scene->analytic_peak}, {"particle_mass", scene->particle_mass()}};
+    if (!scene->interfaces.empty()) row["scene_derived"]["interfaces"] = scene->interfaces;
     if (sph.status == "numerical_issue") return row;
 
     const double l1 = scene->wall_lo, l2 = scene->wall_hi, eta = scene->eta, peak = scene->analytic_peak;
     const bool walls = scene->has_walls;
     const auto in_interior = [&](double y) { return !walls || (y >= l1 + 3.0 * eta && y <= l2 - 3.0 * eta); };
     const auto in_channel = [&](double y) { return !walls || (y > l1 && y < l2); };
+    const double support = SmoothingKernel::from_name(scene->smoothing_kernel, scene->h).support();
+    if (!scene->interfaces.empty()) row["interfaces"] = interface_check(*scene, ps, support);
 
     // Particles against (5.15)/(D.3).
     std::vector<double> py, pv;
@@ -108,6 +179,16 @@ class SphValidation : public ExperimentKind {
                                        {"interior", error_norms(u, ref, interior, peak).to_json()},
                                        {"wall_band", error_norms(u, ref, band, peak).to_json()}};
     errors["peak_relative_difference"] = peak_relative_difference(u, ref);
+    if (!scene->interfaces.empty()) {
+      // Particles within one SPH support of a phase interface, and the rest.
+      std::vector<bool> near(py.size()), away(py.size());
+      for (std::size_t k = 0; k < py.size(); ++k) {
+        near[k] = distance_to_interface(*scene, py[k]) < support;
+        away[k] = !near[k];
+      }
+      errors["particles_vs_analytic"]["near_interfaces"] = error_norms(u, ref, near, peak).to_json();
+      errors["particles_vs_analytic"]["away_from_interfaces"] = error_norms(u, ref, away, peak).to_json();
+    }
 
     // Averages on the column mesh.
     const auto t_avg = clock::now();
@@ -124,7 +205,8 @@ class SphValidation : public ExperimentKind {
     for (int n = 0; n < nn; ++n) {
       const double y = mesh.node(n).y();
       const double r = kernel->support_radius();
-      avg_ref[n] = average_by_quadrature(scene->analytic_vx, phi, r, y, walls ? l1 : y - r, walls ? l2 : y + r);
+      avg_ref[n] =
+          average_by_quadrature(scene->analytic_vx, phi, r, y, walls ? l1 : y - r, walls ? l2 : y + r, scene->interfaces);
       point_ref[n] = scene->analytic_vx(y);
       node_channel[n] = in_channel(y);
       node_interior[n] = in_interior(y);

@@ -136,8 +136,9 @@ void CoarseQuadrature::setup(const Scene& scene, const AveragingKernel& kernel, 
         p.rho = Vec2(ox * dx, oy * dx);
         const double r = p.rho.norm();
         p.F = w.dw(r) / r;
-        p.mu_a = scene.viscosity_at(qa);
-        p.mu_b = scene.viscosity_at(qb);
+        const bool unlike = scene.phase(qa.y()) != scene.phase(qb.y());
+        p.mu_ab = pair_viscosity(scene.viscosity_at(qa), scene.viscosity_at(qb), scene.pair_viscosity_mean);
+        p.p_over_n2 = p_over_n2_ + (unlike ? scene.unlike_pair_excess_over_n2() : 0.0);
         // ½ (N/N_C share) per unit bond integral: ½ s_x × rows; x-integrated: ½ rows / ε' per unit 1D weight.
         p.weight = x_integrated ? 0.5 * row.sites / dx : 0.5 * col.sites * row.sites;
         p.mass = 0.5 * col.sites * row.sites;
@@ -188,7 +189,7 @@ Vec2 CoarseQuadrature::pair_force(const VirtualPair& p, const Eigen::Matrix2Xd& 
   Vec2 v_ab = va - vb;
   if (p.beta != 0.0) v_ab = p.sa >= 0 ? Vec2(p.beta * va) : Vec2(-p.beta * vb);  // as SphEngine's ghost wall
   // (5.1) on the a-end due to the b-end; q_ab = q_a − q_b = −ρ.
-  return sph_pair_force(p_over_n2_, p_over_n2_, p.mu_a, p.mu_b, n_star_, n_star_, p.F, -p.rho, v_ab);
+  return sph_pair_force(p.p_over_n2, p.p_over_n2, p.mu_ab, n_star_, n_star_, p.F, -p.rho, v_ab);
 }
 
 std::map<std::string, Eigen::VectorXd> CoarseQuadrature::evaluate(const VelocitySampler& sampler) {

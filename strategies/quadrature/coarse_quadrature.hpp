@@ -57,7 +57,8 @@ class CoarseQuadrature : public StressQuadrature {
     std::int32_t sa, sb;  // sample indices of the two ends (−1: a wall site, at rest)
     Vec2 rho;             // ρ = q_b − q_a
     double F;             // w'(|ρ|)/|ρ|
-    double mu_a, mu_b;
+    double mu_ab;         // μ_ab of (5.1): pair_viscosity of the two ends' phases (core/sph_pair_force.hpp)
+    double p_over_n2;     // P*/n*² of each end, plus the unlike-pair excess of (7.1) when the phases differ
     double weight;  // ½ (N/N_C share) per unit bond integral (x-integrated: per unit 1D bond integral)
     double mass;    // ½ × the particles the base site stands for (its share of the virial)
     double beta;  // ghost-velocity walls (a fluid–wall pair): v_a − v_b = ±β v_fluid as in direct SPH; else 0

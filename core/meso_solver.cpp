@@ -8,6 +8,7 @@
 #include "core/averaging.hpp"
 #include "core/errors.hpp"
 #include "core/reconstruction.hpp"
+#include "core/snapshot_schedule.hpp"
 
 namespace closurelab {
 
@@ -242,8 +243,10 @@ MesoResult MesoSolver::run() {
   MesoResult res;
   res.status = "no_convergence";
   Eigen::VectorXd reference = v_;
+  SnapshotSchedule snapshots(opt_.snapshot_times);
   while (res.steps < opt_.max_steps) {
-    double dt = time_step();
+    const double dt_full = time_step();  // reported; snapshots and the target time may shorten a step
+    double dt = snapshots.clamp(res.time, dt_full);
     if (!opt_.to_steady_state) {
       if (res.time >= opt_.target_time * (1.0 - 1e-14)) {
         res.status = "target_time";
@@ -259,9 +262,10 @@ MesoResult MesoSolver::run() {
       res.message = issue;
       break;
     }
-    res.dt = dt;
+    res.dt = dt_full;
     res.time += dt;
     ++res.steps;
+    if (snapshots.due(res.time) && opt_.on_snapshot) opt_.on_snapshot(res.time, v_);
     if (res.steps % opt_.steady_window == 0) {
       const double mag = v_.cwiseAbs().maxCoeff();
       res.last_relative_change = mag > 0 ? (v_ - reference).cwiseAbs().maxCoeff() / mag : 0.0;

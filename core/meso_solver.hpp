@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/averaging_kernel.hpp"
 #include "core/deconvolver.hpp"
@@ -38,6 +39,9 @@ struct MesoSolverOptions {
   std::int64_t max_steps = 10000000;
   double progress_seconds = 10.0;
   std::function<void(const std::string&)> progress;
+  // Snapshots (ascending model times): the run lands a step on each and calls on_snapshot(time, v̄).
+  std::vector<double> snapshot_times;
+  std::function<void(double time, const Eigen::VectorXd& v)> on_snapshot;
   // Wall particles are held at rest by constraint forces that (5.8) does not contain (DESIGN.md §6). When
   // true, their average F_c(y) = −Σ_walls f_i^int ψ(y − q_i), with f_i^int the pair forces (5.1) on wall
   // particle i under the reconstructed velocities, is added to the coarse balance. Costs one pair-force

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/snapshot_schedule.hpp"
 #include "core/sph_engine.hpp"
 
 namespace closurelab {
@@ -46,8 +47,10 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
     return mag > 0.0 ? diff / mag : (diff > 0.0 ? 1.0 : 0.0);
   };
   res.status = "no_convergence";
+  SnapshotSchedule snapshots(opt.snapshot_times);
   while (res.steps < opt.max_steps) {
-    double dt = engine.time_step(opt.kappa);
+    const double dt_full = engine.time_step(opt.kappa);  // reported; snapshots and the target time may shorten a step
+    double dt = snapshots.clamp(res.time, dt_full);
     if (!opt.to_steady_state) {
       if (res.time >= opt.target_time * (1.0 - 1e-14)) {
         res.status = "target_time";
@@ -58,9 +61,10 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
       break;
     }
     engine.step(dt);
-    res.dt = dt;
+    res.dt = dt_full;
     res.time += dt;
     ++res.steps;
+    if (snapshots.due(res.time) && opt.on_snapshot) opt.on_snapshot(res.time, ps);
     if (res.steps % opt.steady_window == 0) {
       for (int a : engine.moving()) {
         if (!std::isfinite(ps.vx[a]) || !std::isfinite(ps.vy[a]) || !std::isfinite(ps.x[a]) || !std::isfinite(ps.y[a])) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/params.hpp"
 #include "core/scene.hpp"
@@ -25,6 +26,9 @@ struct SphRunOptions {
   // Lattice particles sliding past each other carry a persistent ~1e-4 velocity ripple, so experiments
   // pass the averaged (mesoscale) velocity here, the quantity they compare.
   std::function<Eigen::VectorXd(const ParticleSystem&)> observable;
+  // Snapshots (ascending model times): the run lands a step on each and calls on_snapshot(time, particles).
+  std::vector<double> snapshot_times;
+  std::function<void(double time, const ParticleSystem&)> on_snapshot;
 };
 
 struct SphRunResult {

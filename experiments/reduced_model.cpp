@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <tuple>
 
 #include "core/analytic.hpp"
 #include "core/averaging.hpp"
@@ -47,11 +48,18 @@ ParamSchema reference_schema() {
           number_param("observe_spacing_over_eta", 0.25, "mesh spacing / eta' for the direct run's steady test", 0.01, 10.0)};
 }
 
-// Direct SPH references (the final particle state) are shared by the cells of one process that use the same
+ParamSchema transient_schema() {
+  return {array_param("t_star", json::array(),
+                      "dimensionless snapshot times t* = t v_max / L (ascending; v_max: the analytic peak, L: the "
+                      "channel width, or L_y without walls); the steady state is always reported as well")};
+}
+
+// Direct SPH references (the final particle state and any snapshots) are shared by the cells of one process that use the same
 // scene, kernel and reference solver; each cell averages them at its own coarse nodes.
 struct CachedReference {
   ParticleSystem particles;
   json run;
+  std::vector<std::pair<double, ParticleSystem>> snapshots;
 };
 std::mutex cache_mutex;
 std::map<std::string, CachedReference> cache;
@@ -65,7 +73,7 @@ class ReducedModel : public ExperimentKind {
   }
 
   json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
-    check_keys(cell, path, {"scene", "kernel", "closure", "quadrature", "solver", "reference"});
+    check_keys(cell, path, {"scene", "kernel", "closure", "quadrature", "solver", "reference", "transient"});
     json out;
     auto scene = build_scene(cell, path, reg, &out["scene"]);
     if (!scene->analytic_vx) throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
@@ -77,6 +85,15 @@ class ReducedModel : public ExperimentKind {
     out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
+    out["transient"] = resolve_section(cell, "transient", transient_schema(), path);
+    double previous = 0.0;
+    for (std::size_t k = 0; k < out["transient"]["t_star"].size(); ++k) {
+      const json& t = out["transient"]["t_star"][k];
+      const std::string where = path + "/transient/t_star/" + std::to_string(k);
+      if (!t.is_number() || !std::isfinite(t.get<double>()) || t.get<double>() <= previous)
+        throw ConfigError(where, "snapshot times must be finite numbers, positive and ascending");
+      previous = t.get<double>();
+    }
     // Cheap structural checks now (coarse mesh, quadrature fit) so that a bad cell fails before any runs.
     auto deconv = reg.deconvolvers.create(out["closure"]["deconvolver"], path + "/closure/deconvolver");
     auto quad = reg.quadratures.create(out["quadrature"], path + "/quadrature");
@@ -95,6 +112,9 @@ class ReducedModel : public ExperimentKind {
     auto quad = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
     MesoSolverOptions opt = options(cfg);
     opt.progress = progress;
+    opt.snapshot_times = snapshot_times(cfg, *scene);
+    std::vector<std::pair<double, Eigen::VectorXd>> reduced_snapshots;
+    opt.on_snapshot = [&](double t, const Eigen::VectorXd& v) { reduced_snapshots.emplace_back(t, v); };
     const auto t_setup = std::chrono::steady_clock::now();
     MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);  // operators, factorizations, quadrature tables
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count();
@@ -113,7 +133,7 @@ class ReducedModel : public ExperimentKind {
       const double y = reduced.y[n];
       analytic[n] = scene->analytic_vx(y);
       analytic_avg[n] = average_by_quadrature(scene->analytic_vx, [&](double t) { return kernel->factor(t); }, r, y,
-                                              walls ? l1 : y - r, walls ? l2 : y + r);
+                                              walls ? l1 : y - r, walls ? l2 : y + r, scene->interfaces);
       fluid[n] = !walls || (y > l1 + 1e-12 && y < l2 - 1e-12);  // wall nodes carry the imposed v̄ = 0
       interior[n] = !walls || (y >= l1 + 3 * eta - 1e-12 && y <= l2 - 3 * eta + 1e-12);
       band[n] = fluid[n] && !interior[n];
@@ -156,10 +176,28 @@ class ReducedModel : public ExperimentKind {
                  {"bond_weights", reduced.quadrature_cost.bond_weights}};
 
     if (cfg.at("reference").at("direct_sph").get<bool>()) {
-      const auto [averaged, run] = direct_reference(cfg, *scene, *kernel, reduced.y, progress);
+      const auto [averaged, run, direct_snapshots] = direct_reference(cfg, *scene, *kernel, reduced.y, progress);
       errors["vs_averaged_direct_sph"] = norms(averaged);
       profile["direct_average"] = averaged;
       row["direct_sph"] = run;
+      // The transient: both runs at the same model times t = t* L / v_max.
+      json transient = json::array();
+      const json& t_star = cfg.at("transient").at("t_star");
+      for (std::size_t k = 0; k < t_star.size(); ++k) {
+        json snap = {{"t_star", t_star[k]}, {"time", opt.snapshot_times[k]}};
+        if (k < reduced_snapshots.size() && k < direct_snapshots.size()) {
+          const Eigen::VectorXd& vr = reduced_snapshots[k].second;
+          const Eigen::VectorXd& vd = direct_snapshots[k];
+          snap["vs_averaged_direct_sph"] = {{"all", error_norms(vr, vd, fluid, peak).to_json()},
+                                            {"peak_relative_difference", peak_relative_difference(vr, vd)}};
+          snap["reduced"] = vr;
+          snap["direct_average"] = vd;
+        } else {
+          snap["status"] = "not reached (a run ended before this time)";
+        }
+        transient.push_back(snap);
+      }
+      if (!t_star.empty()) row["transient"] = transient;
       const double direct_seconds = run.at("wall_seconds").get<double>();
       cost["direct_sph_wall_seconds"] = direct_seconds;
       // Against the reduced model's whole cost, setup included (the direct run's setup is in its wall time).
@@ -191,11 +229,19 @@ class ReducedModel : public ExperimentKind {
     return o;
   }
 
-  // The averaged direct SPH velocity at `nodes` and the direct run's record.
-  static std::pair<Eigen::VectorXd, json> direct_reference(const json& cfg, const Scene& scene,
+  static std::vector<double> snapshot_times(const json& cfg, const Scene& scene) {
+    const double length = scene.has_walls ? scene.wall_hi - scene.wall_lo : scene.box.ly;
+    std::vector<double> times;
+    for (const json& t : cfg.at("transient").at("t_star")) times.push_back(t.get<double>() * length / scene.analytic_peak);
+    return times;
+  }
+
+  // The averaged direct SPH velocity at `nodes` (final state and each snapshot) and the direct run's record.
+  static std::tuple<Eigen::VectorXd, json, std::vector<Eigen::VectorXd>> direct_reference(const json& cfg, const Scene& scene,
                                                            const AveragingKernel& kernel, const Eigen::VectorXd& nodes,
                                                            const ProgressFn& progress) {
-    const std::string key = cfg.at("scene").dump() + cfg.at("kernel").dump() + cfg.at("reference").dump();
+    const std::string key = cfg.at("scene").dump() + cfg.at("kernel").dump() + cfg.at("reference").dump() +
+                            cfg.at("transient").dump();
     CachedReference c;
     bool reused = false;
     {
@@ -206,9 +252,12 @@ class ReducedModel : public ExperimentKind {
     if (!reused) {
       SphRunOptions opt = sph_run_options_from(cfg.at("reference").at("solver"));
       opt.progress = progress;
+      opt.snapshot_times = snapshot_times(cfg, scene);
+      opt.on_snapshot = [&c](double t, const ParticleSystem& p) { c.snapshots.emplace_back(t, p); };
       const double spacing = cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene.eta;
       DirectReference d = run_direct_reference(scene, kernel, opt, column_mesh(scene.box, spacing));
-      c = CachedReference{std::move(d.particles), d.run.to_json()};
+      c.particles = std::move(d.particles);
+      c.run = d.run.to_json();
       std::lock_guard<std::mutex> lock(cache_mutex);
       cache[key] = c;
     } else {
@@ -217,7 +266,9 @@ class ReducedModel : public ExperimentKind {
     UniformMesh1D axis{nodes[0], nodes.size() > 1 ? nodes[1] - nodes[0] : 1.0, static_cast<int>(nodes.size()),
                        !scene.has_walls, scene.has_walls ? 0.0 : scene.box.ly};
     const TensorMesh2D mesh{UniformMesh1D{0.0, scene.box.lx, 1, true, scene.box.lx}, axis};
-    return {average_particles(c.particles, scene.box, kernel, mesh, AveragingRequest{}).vx, c.run};
+    std::vector<Eigen::VectorXd> snapshots;
+    for (const auto& [t, p] : c.snapshots) snapshots.push_back(average_particles(p, scene.box, kernel, mesh, AveragingRequest{}).vx);
+    return {average_particles(c.particles, scene.box, kernel, mesh, AveragingRequest{}).vx, c.run, snapshots};
   }
 };
 

@@ -275,6 +275,13 @@ MesoResult MesoSolver::run() {
         res.message = "coarse velocity is not finite";
         break;
       }
+      if (scene_.analytic_peak > 0 && mag > opt_.divergence_factor * scene_.analytic_peak) {
+        std::ostringstream os;
+        os << "diverged: max|v| = " << mag << " exceeds " << opt_.divergence_factor << " x the analytic peak";
+        res.status = "numerical_issue";
+        res.message = os.str();
+        break;
+      }
       if (opt_.to_steady_state && res.steps > opt_.steady_window && res.last_relative_change < opt_.steady_tolerance) {
         res.status = "converged";
         break;

@@ -36,6 +36,9 @@ struct MesoSolverOptions {
   double steady_tolerance = 1e-5;      // max|Δv̄| / max|v̄| over the window (as the direct solver)
   int steady_window = 1000;
   double max_time = 100.0;
+  // Divergence: stop (numerical_issue) when max|v̄| exceeds this multiple of the scene's analytic peak; an
+  // unstable closure otherwise runs on with (5.21) shrinking the step without bound.
+  double divergence_factor = 1e3;
   std::int64_t max_steps = 10000000;
   double progress_seconds = 10.0;
   std::function<void(const std::string&)> progress;

@@ -82,7 +82,7 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
       if (opt.progress && std::chrono::duration<double>(now - last_report).count() >= opt.progress_seconds) {
         last_report = now;
         std::ostringstream os;
-        os << "direct SPH: step " << res.steps << ", t = " << res.time << ", dt = " << dt
+        os << "direct SPH: step " << res.steps << ", t = " << res.time << ", dt = " << dt_full
            << ", max|v| = " << engine.max_speed() << ", change over " << opt.steady_window
            << " steps = " << res.last_relative_change;
         opt.progress(os.str());

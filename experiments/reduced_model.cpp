@@ -185,9 +185,13 @@ class ReducedModel : public ExperimentKind {
       const json& t_star = cfg.at("transient").at("t_star");
       for (std::size_t k = 0; k < t_star.size(); ++k) {
         json snap = {{"t_star", t_star[k]}, {"time", opt.snapshot_times[k]}};
-        if (k < reduced_snapshots.size() && k < direct_snapshots.size()) {
-          const Eigen::VectorXd& vr = reduced_snapshots[k].second;
-          const Eigen::VectorXd& vd = direct_snapshots[k];
+        // A run that reached steady state before this time stays there: its final state stands in.
+        const bool reduced_has = k < reduced_snapshots.size() || reduced.status == "converged";
+        const bool direct_has = k < direct_snapshots.size() || run.at("status") == "converged";
+        if (reduced_has && direct_has) {
+          const Eigen::VectorXd& vr = k < reduced_snapshots.size() ? reduced_snapshots[k].second : reduced.v;
+          const Eigen::VectorXd& vd = k < direct_snapshots.size() ? direct_snapshots[k] : averaged;
+          if (k >= reduced_snapshots.size() || k >= direct_snapshots.size()) snap["steady_state_stands_in"] = true;
           snap["vs_averaged_direct_sph"] = {{"all", error_norms(vr, vd, fluid, peak).to_json()},
                                             {"peak_relative_difference", peak_relative_difference(vr, vd)}};
           snap["reduced"] = vr;

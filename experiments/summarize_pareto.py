@@ -5,8 +5,8 @@ Usage: python3 experiments/summarize_pareto.py TABLE.json OUT_PREFIX [ERROR_KEY]
 writes OUT_PREFIX.md and (where matplotlib is available) OUT_PREFIX.png. ERROR_KEY picks the error measure,
 "reference/subset" with reference in vs_averaged_direct_sph, vs_averaged_analytic, vs_analytic and subset in
 all, interior (default: vs_averaged_direct_sph/all when present, else vs_averaged_analytic/all); the measure is
-the max-norm error relative to the analytic peak. A cell is on the Pareto front when no other cell is at once
-faster (reduced-model setup + run wall time) and at most as wrong. Every number is read from the table; wall times are on
+the max-norm error relative to the analytic peak. A cell is on the Pareto front unless another cell is no slower
+(reduced-model setup + run wall time) and no less accurate, and strictly better in one of the two. Every number is read from the table; wall times are on
 one shared core, so ratios are meaningful within one table only.
 """
 import json
@@ -55,7 +55,8 @@ def main(path, prefix, key=None):
              "steady state (or the target time), of which *deconv s* in the deconvolution. **Bold**: on the Pareto front.\n",
              "| strategy | status | error | peak | vs analytic | total s | deconv s | steps | speed-up vs direct SPH |",
              "|---|---|---|---|---|---|---|---|---|"]
-    order = sorted(rows, key=lambda r: (r.get("status") != "ok", error_of(r, ref, subset) or 1e300))
+    order = sorted(rows, key=lambda r: (r.get("status") != "ok",
+                                        1e300 if error_of(r, ref, subset) is None else error_of(r, ref, subset)))
     for r in order:
         e, c = r.get("errors", {}), r.get("cost", {})
         label = f"**{r['label']}**" if r["id"] in front else r["label"]

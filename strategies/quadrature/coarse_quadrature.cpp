@@ -109,6 +109,11 @@ void CoarseQuadrature::setup(const Scene& scene, const AveragingKernel& kernel, 
     return it->second;
   };
   const auto wrap = [](int h, int n2) { return (h % n2 + n2) % n2; };
+  // The lattice rows (height, share) that a point at height h·ε'/2 stands for.
+  const auto rows_of = [half](int h) -> std::vector<std::pair<double, double>> {
+    if (h % 2 != 0) return {{h * half, 1.0}};
+    return {{(h - 1) * half, 0.5}, {(h + 1) * half, 0.5}};
+  };
   const double lo = scene.wall_lo, hi = scene.wall_hi;
   const auto wall_distance = [&](double y) { return y < lo ? lo - y : y - hi; };
   std::vector<Vec2> bond_start;  // positions of the a-ends (unwrapped), for the weights
@@ -136,9 +141,18 @@ void CoarseQuadrature::setup(const Scene& scene, const AveragingKernel& kernel, 
         p.rho = Vec2(ox * dx, oy * dx);
         const double r = p.rho.norm();
         p.F = w.dw(r) / r;
-        const bool unlike = scene.phase(qa.y()) != scene.phase(qb.y());
-        p.mu_ab = pair_viscosity(scene.viscosity_at(qa), scene.viscosity_at(qb), scene.pair_viscosity_mean);
-        p.p_over_n2 = p_over_n2_ + (unlike ? scene.unlike_pair_excess_over_n2() : 0.0);
+        // Phase-dependent parts of (5.1) (viscosity, the unlike-pair pressure of (7.1)): an end at a row centre
+        // (odd h) stands for that row; an end on a row boundary (even h, where the phase interfaces lie) for
+        // half of each neighbouring row, so the pair takes the mean over the row combinations.
+        p.mu_ab = 0.0;
+        double unlike = 0.0;
+        for (const auto& [ya, fa] : rows_of(hy))
+          for (const auto& [yb, fb] : rows_of(hy2)) {
+            p.mu_ab += fa * fb * pair_viscosity(scene.viscosity_at(Vec2(qa.x(), ya)), scene.viscosity_at(Vec2(qb.x(), yb)),
+                                                scene.pair_viscosity_mean);
+            unlike += fa * fb * (scene.phase(ya) != scene.phase(yb) ? 1.0 : 0.0);
+          }
+        p.p_over_n2 = p_over_n2_ + unlike * scene.unlike_pair_excess_over_n2();
         // ½ (N/N_C share) per unit bond integral: ½ s_x × rows; x-integrated: ½ rows / ε' per unit 1D weight.
         p.weight = x_integrated ? 0.5 * row.sites / dx : 0.5 * col.sites * row.sites;
         p.mass = 0.5 * col.sites * row.sites;

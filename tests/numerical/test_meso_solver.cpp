@@ -92,8 +92,11 @@ TEST(ReducedModel, WallConstraintMapEqualsTheDirectPairSweep) {
   // The solver applies the wall constraint forces as an affine map of the reconstruction on the rows next to
   // the walls (probed once). Check it against the definition, F_c(y_n) = −Σ_walls f_i^int ψ(y_n − q_i), from a
   // full pair sweep of the lattice carrying the reconstructed velocities; only rounding separates them.
+  // Both wall models: the ghost-velocity wall's β depends on position only, so F_c stays affine in v.
+  for (const char* walls : {"zero_velocity", "ghost_velocity"}) {
+  SCOPED_TRACE(walls);
   const Registry& reg = builtin_registry();
-  const auto scene = reg.scenes.create(json{{"name", "poiseuille-periodic"}, {"n_y", 48}}, "/scene");
+  const auto scene = reg.scenes.create(json{{"name", "poiseuille-periodic"}, {"n_y", 48}, {"wall_model", walls}}, "/scene");
   const auto kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", scene->eta}}, "/kernel");
   auto deconv = reg.deconvolvers.create(json{{"name", "landweber"}, {"order", 1}}, "/deconvolver");
   auto quad = reg.quadratures.create(json{{"name", "exact"}}, "/quadrature");
@@ -124,6 +127,7 @@ TEST(ReducedModel, WallConstraintMapEqualsTheDirectPairSweep) {
   }
   ASSERT_GT(direct.cwiseAbs().maxCoeff(), 0.0);
   EXPECT_LT((mapped - direct).cwiseAbs().maxCoeff(), 1e-9 * direct.cwiseAbs().maxCoeff());
+  }
 }
 
 TEST(ReducedModel, FirstOrderBeatsZeroOrderUnderThePeriodicForce) {
@@ -132,7 +136,7 @@ TEST(ReducedModel, FirstOrderBeatsZeroOrderUnderThePeriodicForce) {
   // approximates), at n_y = 48 with the exact stress, staggered scheme and the wall constraint forces; the
   // coarse-coarse reconstruction is pinned to zero on the wall surfaces (without the pin, first order fails).
   // Measured max errors / analytic peak: 0.44 (zero order), 0.28 (first order); asserted: the ordering, with a
-  // margin (first <= 0.8 x zero).
+  // margin (first <= 0.8 x zero), and each below its measured value plus ~15 %.
   const Registry& reg = builtin_registry();
   const auto scene = reg.scenes.create(json{{"name", "poiseuille-periodic"}, {"n_y", 48}, {"n_x", 12}, {"eta_over_ly", 0.07}}, "/scene");
   const auto kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", scene->eta}}, "/kernel");
@@ -156,4 +160,6 @@ TEST(ReducedModel, FirstOrderBeatsZeroOrderUnderThePeriodicForce) {
     std::cout << "order " << order << ": max error vs averaged analytic " << e << " (" << r.steps << " steps)\n";
   }
   EXPECT_LT(err[1], 0.8 * err[0]);
+  EXPECT_LT(err[0], 0.5);   // guards against both getting worse together
+  EXPECT_LT(err[1], 0.35);
 }

@@ -48,6 +48,7 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
     if (k < 4) throw ConfigError("/solver/spacing_over_eta", "fewer than 4 coarse nodes across the domain");
     coarse_ = UniformMesh1D::cell_centred(0.0, scene.box.ly, k, true);
     fine_ = UniformMesh1D::cell_centred(0.0, scene.box.ly, scene.ny, true);
+    data_ = coarse_;
     stress_axis_ = coarse_;
     if (opt_.scheme == "staggered") stress_axis_.origin += 0.5 * coarse_.spacing;
   } else {
@@ -56,6 +57,12 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
     if (k < 4)
       throw ConfigError("/solver/spacing_over_eta", "fewer than 4 coarse intervals across the channel (eta' too large)");
     coarse_ = UniformMesh1D{scene.wall_lo, w / k, k + 1, false, 0.0};  // nodes on both walls (5.6)
+    // The deconvolution's data: the interior nodes. The wall nodes carry the imposed v̄ = 0 of (5.6), not an
+    // average (the real average there is not zero: the window holds fluid), so they are not data; their
+    // solution value is the particle velocity on the wall surface, zero by no slip. Used as data, the false
+    // zero drives the reconstructed near-wall fluid backwards, the wall particles drag it forwards, and with
+    // the wall constraint forces the loop diverges (measured for cc orders >= 1 and for cf).
+    data_ = UniformMesh1D{scene.wall_lo + w / k, w / k, k - 1, false, 0.0};
     const int j_lo = static_cast<int>(std::floor(scene.wall_lo / scene.dx - 0.5)) + 1;
     int count = 0;
     while ((j_lo + count + 0.5) * scene.dx < scene.wall_hi) ++count;
@@ -65,7 +72,7 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
   }
   if (opt_.scheme != "paper" && opt_.scheme != "staggered")
     throw ConfigError("/solver/scheme", "unknown scheme '" + opt_.scheme + "'; known: paper, staggered");
-  op_ = make_averaging_operator_1d(kernel, coarse_, fine_, opt_.discretization);
+  op_ = make_averaging_operator_1d(kernel, data_, fine_, opt_.discretization);
   try {
     deconvolver_.setup(op_);
   } catch (const ConfigError& e) {
@@ -169,7 +176,8 @@ Eigen::Matrix2Xd MesoSolver::sample_reconstruction(const std::vector<Vec2>& poin
 bool MesoSolver::close_stress(std::string& issue) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
-  Eigen::VectorXd b = v_;
+  const bool walls_off = !periodic_ && opt_.discretization != Discretization::fine_fine;
+  Eigen::VectorXd b = walls_off ? Eigen::VectorXd(v_.segment(1, v_.size() - 2)) : v_;
   if (opt_.discretization == Discretization::fine_fine) {
     std::vector<Vec2> pts;
     for (int j = 0; j < fine_.count; ++j) pts.emplace_back(fine_.node(j), 0.0);
@@ -177,13 +185,12 @@ bool MesoSolver::close_stress(std::string& issue) {
   }
   const DeconvolutionResult r = deconvolver_.solve(b, opt_.noise_level);
   matvecs_ += r.cost.matvecs;
-  reconstruction_ = r.x;
-  // Coarse–coarse: the solution nodes on l1 and l2 lie on the wall surfaces, where the particle velocity is
-  // zero (no slip, the particle-level content of (5.6)). The series (2I − A)v̄ … would put −(A v̄) there, a
-  // backward-moving layer that the wall particles then drag forward: with the wall constraint forces that
-  // feedback grows without bound (measured). Pin them.
-  if (!periodic_ && opt_.discretization == Discretization::coarse_coarse && reconstruction_.size() == v_.size())
-    reconstruction_[0] = reconstruction_[reconstruction_.size() - 1] = 0.0;
+  if (walls_off && opt_.discretization == Discretization::coarse_coarse) {
+    reconstruction_ = Eigen::VectorXd::Zero(v_.size());  // zero on the wall surfaces (no slip)
+    reconstruction_.segment(1, v_.size() - 2) = r.x;
+  } else {
+    reconstruction_ = r.x;
+  }
   const auto t1 = clock::now();
   deconv_seconds_ += std::chrono::duration<double>(t1 - t0).count();
   if (!reconstruction_.allFinite()) {

@@ -5,7 +5,7 @@
 //   deconvolve v̄ (any registered Deconvolver, at the named discretization of §4.2) → the reconstruction,
 //   sampled at the points the quadrature asks for (points in walls at rest) → T_int by the chosen
 //   StressQuadrature (exact pair sum (2.13) or coarse (5.27)) → update.
-// v̄ = 0 on the wall nodes (5.6)/(5.14); F̄ is the averaged external force (2.14) of the lattice, divided by
+// v̄ = 0 on the wall nodes (5.6)/(5.14), which are therefore not deconvolution data; F̄ is the averaged external force (2.14) of the lattice, divided by
 // the averaged density (2.8). A conservative (staggered) variant evaluates T at mid-nodes and updates by
 // the flux difference.
 #include <Eigen/Core>
@@ -95,7 +95,7 @@ class MesoSolver {
   Deconvolver& deconvolver_;
   StressQuadrature& quadrature_;
   MesoSolverOptions opt_;
-  UniformMesh1D coarse_, fine_, stress_axis_;
+  UniformMesh1D coarse_, data_, fine_, stress_axis_;  // data_: the nodes whose v̄ is deconvolved
   ForwardOperator op_;
   bool periodic_ = false;
   Eigen::VectorXd v_, accel_force_, rho_bar_, t_, reconstruction_;

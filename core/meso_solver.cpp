@@ -86,8 +86,10 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
   // F̄ (2.14) and ρ̄ (2.8) of the lattice at the coarse nodes.
   AveragingRequest req;
   req.external = true;
-  const ParticleSystem lattice = scene.make_particles();
-  const MesoFields f = average_particles(lattice, scene.box, kernel, column(scene, coarse_), req, {}, scene.force_x);
+  // Per unit length in x, so the narrowest strip gives them at a cost independent of the scene's width.
+  const Scene strip = scene.narrowest_strip();
+  const ParticleSystem lattice = strip.make_particles();
+  const MesoFields f = average_particles(lattice, strip.box, kernel, column(strip, coarse_), req, {}, strip.force_x);
   rho_bar_ = f.rho;
   accel_force_ = f.fx.cwiseQuotient(f.rho);
   v_ = Eigen::VectorXd::Zero(coarse_.count);
@@ -99,8 +101,9 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
 // function of y alone: F_c = c₀ + M v(rows) over the fluid rows that reach a wall particle. M is probed
 // once, one row at a time, with the real pair forces (5.1); each step then costs O(nodes × rows).
 void MesoSolver::build_constraint_map() {
-  ParticleSystem lattice = scene_.make_particles();
-  SphEngine engine(scene_, lattice);
+  const Scene strip = scene_.narrowest_strip();  // F_c per unit length: the narrowest strip gives it
+  ParticleSystem lattice = strip.make_particles();
+  SphEngine engine(strip, lattice);
   const double reach = SmoothingKernel::from_name(scene_.smoothing_kernel, scene_.h).support();
   std::vector<std::int32_t> walls;
   std::map<long, std::vector<std::int32_t>> rows;  // fluid rows within reach of a wall, by lattice row index
@@ -118,9 +121,9 @@ void MesoSolver::build_constraint_map() {
   for (std::size_t w = 0; w < walls.size(); ++w) {
     const int a = walls[w];
     double wx = 0.0;
-    for (int k = static_cast<int>(std::floor((-r - lattice.x[a]) / scene_.box.lx));
-         k <= static_cast<int>(std::ceil((r - lattice.x[a]) / scene_.box.lx)); ++k)
-      wx += kernel_.factor(lattice.x[a] + k * scene_.box.lx);
+    for (int k = static_cast<int>(std::floor((-r - lattice.x[a]) / strip.box.lx));
+         k <= static_cast<int>(std::ceil((r - lattice.x[a]) / strip.box.lx)); ++k)
+      wx += kernel_.factor(lattice.x[a] + k * strip.box.lx);
     for (int n = 0; n < coarse_.count; ++n)
       weights(n, static_cast<Eigen::Index>(w)) = wx * kernel_.factor(coarse_.node(n) - lattice.y[a]);
   }

@@ -65,6 +65,10 @@ struct Scene {
   double analytic_peak = 0.0;
 
   bool is_wall(double y) const { return has_walls && (y < wall_lo || y > wall_hi); }
+  // For an x-invariant scene, the same scene on the narrowest periodic strip the SPH engine accepts (3 supports
+  // plus the list skin): per-unit-length quantities (averages with periodic images, pair sums per column) are
+  // the same on it; otherwise the scene itself.
+  Scene narrowest_strip() const;
   // Lattice particles: (i + 1/2) dx, (j + 1/2) dx; walls held fixed; mass so that the SPH density is rho0.
   ParticleSystem make_particles() const;
   double particle_mass() const;

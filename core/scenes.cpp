@@ -21,6 +21,17 @@ ParticleSystem Scene::make_particles() const {
   return ps;
 }
 
+Scene Scene::narrowest_strip() const {
+  if (!x_invariant || !box.periodic_x) return *this;
+  const double support = SmoothingKernel::from_name(smoothing_kernel, h).support();
+  const int columns = static_cast<int>(std::ceil(3.0 * (support + 0.5 * dx) / dx - 1e-9));
+  if (columns >= nx) return *this;
+  Scene s = *this;
+  s.nx = columns;
+  s.box.lx = columns * dx;
+  return s;
+}
+
 double Scene::particle_mass() const {
   // m = rho0 / n0 with n0 the number density of the perfect lattice, so the SPH density at rest is rho0.
   const SmoothingKernel w = SmoothingKernel::from_name(smoothing_kernel, h);

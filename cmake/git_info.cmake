@@ -1,11 +1,12 @@
-# Run at every build (cmake -P): writes the git commit (with "-dirty" for uncommitted tracked changes)
+# Run at every build (cmake -P): writes the git commit (with "-dirty" for uncommitted tracked changes outside
+# results/, which experiments write while a build may be going on)
 # into ${OUT}, touching the file only when the value changes.
 execute_process(COMMAND git rev-parse --short=12 HEAD WORKING_DIRECTORY ${SRC}
                 OUTPUT_VARIABLE commit OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0 OR NOT commit)
   set(commit "unknown")
 else()
-  execute_process(COMMAND git status --porcelain --untracked-files=no WORKING_DIRECTORY ${SRC}
+  execute_process(COMMAND git status --porcelain --untracked-files=no -- . ":(exclude)results" WORKING_DIRECTORY ${SRC}
                   OUTPUT_VARIABLE dirty OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
   if(dirty)
     string(APPEND commit "-dirty")

@@ -58,11 +58,12 @@ def main(path, prefix, key=None):
     order = sorted(rows, key=lambda r: (r.get("status") != "ok",
                                         1e300 if error_of(r, ref, subset) is None else error_of(r, ref, subset)))
     for r in order:
-        e, c = r.get("errors", {}), r.get("cost", {})
+        e, c = (r.get("errors", {}) if r.get("status") == "ok" else {}), r.get("cost", {})
         label = f"**{r['label']}**" if r["id"] in front else r["label"]
-        status = r.get("status", "") if r.get("status") == "ok" else f"{r.get('status')}: {r.get('error', '')[:80]}"
-        lines.append(f"| {label} | {status} | {fmt(error_of(r, ref, subset))} | {fmt(e.get(ref, {}).get('peak_relative_difference'))} | "
-                     f"{fmt(error_of(r, 'vs_analytic', subset))} | {fmt(total_seconds(r))} | "
+        message = r.get("error") or r.get("reduced_model", {}).get("message") or ""
+        status = r.get("status", "") if r.get("status") == "ok" else f"{r.get('status')}: {message[:80]}"
+        lines.append(f"| {label} | {status} | {fmt(error_of({'errors': e}, ref, subset))} | {fmt(e.get(ref, {}).get('peak_relative_difference'))} | "
+                     f"{fmt(error_of({'errors': e}, 'vs_analytic', subset))} | {fmt(total_seconds(r))} | "
                      f"{fmt(c.get('deconvolution_seconds'))} | {fmt(c.get('steps'))} | {fmt(c.get('speed_up'))} |")
     if pts:
         best = min(pts, key=lambda p: p[1])

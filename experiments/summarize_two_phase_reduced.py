@@ -91,8 +91,9 @@ def main(args):
               "|---|---|---|---|---|---|---|---|---|"]
         ok = sorted(by_case[c], key=lambda r: (r.get("status") != "ok", abs(peak_or(r, 1e9))))
         for r in ok:
-            e = r.get("errors", {})
-            status = r.get("status") if r.get("status") == "ok" else f"{r.get('status')}: {r.get('error', '')[:60]}"
+            e = r.get("errors", {}) if r.get("status") == "ok" else {}  # a failed run's errors say nothing
+            status = r.get("status") if r.get("status") == "ok" else \
+                f"{r.get('status')}: {(r.get('error') or get(r, 'reduced_model', 'message') or '')[:70]}"
             L.append(f"| {label_of(r)} | {status} | {pct(get(e, 'vs_averaged_direct_sph', 'peak_relative_difference'))} | "
                      f"{fmt(get(e, 'vs_averaged_direct_sph', 'all', 'max_rel'))} | {pct(get(e, 'vs_averaged_analytic', 'peak_relative_difference'))} | "
                      f"{fmt(get(e, 'vs_averaged_analytic', 'all', 'max_rel'))} | {fmt(total_seconds(r))} | "

@@ -32,7 +32,7 @@ const std::map<std::string, LayerLayout>& paper_layouts() {
 }
 
 ParamSchema layered_schema() {
-  return {
+  ParamSchema schema{
       string_param("case", "case1",
                    "layer layout (DESIGN.md par. 5): case1/case2/case3 in rows of the 192-row lattice, scaled by n_y/192; "
                    "custom: layer_rows and layer_width",
@@ -57,14 +57,10 @@ ParamSchema layered_schema() {
       number_param("vdw_a", 1.0, "van der Waals (7.1): c_2 n0 / (k_B T), in [0, min(1/(1-phi), 1/(2(1-phi)^2)))", 0.0, {}),
       number_param("k_star", 0.5, "van der Waals (7.1): k_ij across phases, in [0, 1) (smaller: stronger surface tension)",
                    0.0, {}),
-      string_param("wall_model", "zero_velocity",
-                   "zero_velocity: wall particles at rest (5.3, paper); ghost_velocity: Morris ghost velocities",
-                   {"zero_velocity", "ghost_velocity"}),
-      number_param("ghost_beta_max", 1.0e6, "cap on 1 + d_wall/d_fluid in the ghost-velocity wall (Morris: 1.5)", 1.0, {}),
-      string_param("smoothing_kernel", "quintic", "SPH smoothing function", {"quintic", "wendland_c2"}),
-      number_param("h_over_dx", 1.0, "SPH smoothing length h / epsilon'", 0.5, 3.0),
-      number_param("sound_speed_factor", 10.0, "sound speed / analytic peak velocity (>= 10)", 10.0, {}),
   };
+  for (const ParamSchema& more : {wall_model_params(), sph_discretization_params()})
+    schema.insert(schema.end(), more.begin(), more.end());
+  return schema;
 }
 
 }  // namespace

@@ -93,4 +93,8 @@ struct Scene {
   }
 };
 
+// Scene parameters shared by the scene schemas: the wall model (walled scenes) and the SPH discretization.
+ParamSchema wall_model_params();
+ParamSchema sph_discretization_params();  // smoothing_kernel, h_over_dx, sound_speed_factor
+
 }  // namespace closurelab

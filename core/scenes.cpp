@@ -50,10 +50,27 @@ double Scene::max_viscosity() const {
 
 double Scene::viscosity_at(const Vec2& point) const { return phase_viscosity.at(phase(point.y())); }
 
+ParamSchema wall_model_params() {
+  return {
+      string_param("wall_model", "zero_velocity",
+                   "zero_velocity: wall particles at rest (5.3, paper); ghost_velocity: Morris ghost velocities",
+                   {"zero_velocity", "ghost_velocity"}),
+      number_param("ghost_beta_max", 1.0e6, "cap on 1 + d_wall/d_fluid in the ghost-velocity wall (Morris: 1.5)", 1.0, {}),
+  };
+}
+
+ParamSchema sph_discretization_params() {
+  return {
+      string_param("smoothing_kernel", "quintic", "SPH smoothing function", {"quintic", "wendland_c2"}),
+      number_param("h_over_dx", 1.0, "SPH smoothing length h / epsilon'", 0.5, 3.0),
+      number_param("sound_speed_factor", 10.0, "sound speed / analytic peak velocity (>= 10)", 10.0, {}),
+  };
+}
+
 namespace {
 
 ParamSchema channel_schema() {
-  return {
+  ParamSchema schema{
       integer_param("n_y", 48, "particle rows across L_y (epsilon' = L_y / n_y)", 8, 4096),
       integer_param("n_x", 12, "particle columns of the periodic strip (x-extent = n_x epsilon')", 4, 100000),
       number_param("eta_over_ly", 1.0 / 16.0, "averaging scale eta'/L_y; walls are 3 eta' thick (5.3)", 0.0, 0.5, true),
@@ -61,15 +78,27 @@ ParamSchema channel_schema() {
       number_param("rho", 1.0, "fluid density", 0.0, {}, true),
       number_param("mu", 1.0, "dynamic viscosity", 0.0, {}, true),
       number_param("g", 1.0, "body force per unit mass along x", {}, {}),
-      string_param("wall_model", "zero_velocity",
-                   "zero_velocity: wall particles at rest (5.3, paper); ghost_velocity: Morris ghost velocities",
-                   {"zero_velocity", "ghost_velocity"}),
-      number_param("ghost_beta_max", 1.0e6, "cap on 1 + d_wall/d_fluid in the ghost-velocity wall (Morris: 1.5)", 1.0, {}),
-      string_param("smoothing_kernel", "quintic", "SPH smoothing function", {"quintic", "wendland_c2"}),
-      number_param("h_over_dx", 1.0, "SPH smoothing length h / epsilon'", 0.5, 3.0),
-      number_param("sound_speed_factor", 10.0, "sound speed / analytic peak velocity (>= 10)", 10.0, {}),
       number_param("background_pressure_factor", 1.0, "background pressure / (rho c^2)", 0.0, 10.0),
   };
+  for (const ParamSchema& more : {wall_model_params(), sph_discretization_params()})
+    schema.insert(schema.end(), more.begin(), more.end());
+  return schema;
+}
+
+ParamSchema kolmogorov_schema() {
+  ParamSchema schema{
+      integer_param("n_y", 48, "particle rows across L_y (epsilon' = L_y / n_y)", 8, 4096),
+      integer_param("n_x", 12, "particle columns of the periodic strip", 4, 100000),
+      number_param("eta_over_ly", 1.0 / 16.0, "averaging scale eta'/L_y", 0.0, 0.5, true),
+      number_param("ly", 1.0, "domain height L_y", 0.0, {}, true),
+      number_param("rho", 1.0, "fluid density", 0.0, {}, true),
+      number_param("mu", 1.0, "dynamic viscosity", 0.0, {}, true),
+      number_param("g", 1.0, "force amplitude per unit mass", 0.0, {}, true),
+      integer_param("k", 1, "wavenumber of the force (periods across L_y)", 1, 64),
+      number_param("background_pressure_factor", 1.0, "background pressure / (rho c^2)", 0.0, 10.0)};
+  const ParamSchema sph = sph_discretization_params();
+  schema.insert(schema.end(), sph.begin(), sph.end());
+  return schema;
 }
 
 // Builds the common channel geometry from resolved parameters; `path` is the scene's JSON path.
@@ -139,18 +168,7 @@ void register_scenes(Registry& r) {
   r.scenes.add(
       {"kolmogorov",
        "periodic in x and y, no walls, force g sin(2 pi k y / L_y): a closure's error is its own (DESIGN.md par. 5)",
-       {integer_param("n_y", 48, "particle rows across L_y (epsilon' = L_y / n_y)", 8, 4096),
-        integer_param("n_x", 12, "particle columns of the periodic strip", 4, 100000),
-        number_param("eta_over_ly", 1.0 / 16.0, "averaging scale eta'/L_y", 0.0, 0.5, true),
-        number_param("ly", 1.0, "domain height L_y", 0.0, {}, true),
-        number_param("rho", 1.0, "fluid density", 0.0, {}, true),
-        number_param("mu", 1.0, "dynamic viscosity", 0.0, {}, true),
-        number_param("g", 1.0, "force amplitude per unit mass", 0.0, {}, true),
-        integer_param("k", 1, "wavenumber of the force (periods across L_y)", 1, 64),
-        string_param("smoothing_kernel", "quintic", "SPH smoothing function", {"quintic", "wendland_c2"}),
-        number_param("h_over_dx", 1.0, "SPH smoothing length h / epsilon'", 0.5, 3.0),
-        number_param("sound_speed_factor", 10.0, "sound speed / analytic peak velocity (>= 10)", 10.0, {}),
-        number_param("background_pressure_factor", 1.0, "background pressure / (rho c^2)", 0.0, 10.0)}},
+       kolmogorov_schema()},
       [](const json& p) {
         auto s = std::make_unique<Scene>();
         s->name = "kolmogorov";

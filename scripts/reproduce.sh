@@ -3,9 +3,9 @@
 #   results/sph_validation/   the direct SPH reference (issue 2), ~25 min on one core
 #   results/stability/        the deconvolution hard-case suite (issue 3), seconds
 #   results/paper/            the reduced model: Figs. 2-4, the kolmogorov diagnostic, App. B and C, the
-#                             speed-up against the full 192 x 192 direct SPH (issue 4), ~60 min
+#                             speed-up against the full 192 x 192 direct SPH (issue 4), ~40 min
 #   results/speed_vs_error/   every deconvolution strategy as the closure, per scene (issue 4), ~5 min
-#   results/two_phase/        the layered two-phase flow: direct SPH, reduced model, eta' sweep (issue 5), ~45 min
+#   results/two_phase/        the layered two-phase flow: direct SPH, reduced model, eta' sweep (issue 5), ~40 min
 # Finished cells are kept and skipped on a re-run (an interrupted run resumes); pass --force to recompute.
 set -euo pipefail
 cd "$(dirname "$0")/.."

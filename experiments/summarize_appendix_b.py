@@ -11,15 +11,9 @@ from the centre (|y - (l1 + l2)/2| > (l2 - l1)/8, where V' is not small), must t
 exponent is the App. B test.
 """
 import json
-import math
 import sys
 
-
-def slope(points):
-    pts = [(math.log(x), math.log(y)) for x, y in points if x > 0 and y > 0]
-    mx = sum(p[0] for p in pts) / len(pts)
-    my = sum(p[1] for p in pts) / len(pts)
-    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sum((p[0] - mx) ** 2 for p in pts)
+from summary_util import slope
 
 
 def main(path):

@@ -10,23 +10,7 @@ import json
 import math
 import sys
 
-
-def fmt(x, digits=3):
-    if x is None:
-        return "-"
-    if isinstance(x, int) and not isinstance(x, bool):
-        return str(x)
-    return f"{x:.{digits}g}"
-
-
-def slope(points):
-    pts = [(math.log(x), math.log(y)) for x, y in points if x > 0 and y > 0]
-    if len(pts) < 2:
-        return float("nan")
-    mx = sum(p[0] for p in pts) / len(pts)
-    my = sum(p[1] for p in pts) / len(pts)
-    sxx = sum((p[0] - mx) ** 2 for p in pts)
-    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx
+from summary_util import fmt, slope
 
 
 def main(path):

@@ -12,9 +12,7 @@ one shared core, so ratios are meaningful within one table only.
 import json
 import sys
 
-
-def fmt(x, digits=3):
-    return "-" if x is None else (str(x) if isinstance(x, int) else f"{x:.{digits}g}")
+from summary_util import fmt
 
 
 def error_of(row, ref, subset):

@@ -7,17 +7,7 @@ writes OUT_PREFIX.md and OUT_PREFIX.png. Every number is read from the table.
 import json
 import sys
 
-
-def fmt(x, digits=3):
-    return "-" if x is None else (str(x) if isinstance(x, int) else f"{x:.{digits}g}")
-
-
-def get(d, *keys):
-    for k in keys:
-        if not isinstance(d, dict) or k not in d:
-            return None
-        d = d[k]
-    return d
+from summary_util import fmt, get
 
 
 def main(path, prefix):

@@ -8,13 +8,7 @@ Every number printed is read from the table.
 import json
 import sys
 
-
-def fmt(x, digits=3):
-    if x is None:
-        return "-"
-    if isinstance(x, int) and not isinstance(x, bool):
-        return str(x)
-    return f"{x:.{digits}g}"
+from summary_util import fmt
 
 
 def main(path):

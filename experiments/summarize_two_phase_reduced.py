@@ -11,24 +11,14 @@ import json
 import os
 import sys
 
+from summary_util import fmt, get
+
 PAPER = {"case1": 0.10, "case2": 0.06, "case3": 0.02}  # par. 7, second-order closure, peak-velocity metric
 PAPER_CLOSURE = "landweber n=2 (paper)"
 
 
-def fmt(x, digits=3):
-    return "-" if x is None else (str(x) if isinstance(x, int) else f"{x:.{digits}g}")
-
-
 def pct(x):
     return "-" if x is None else f"{100 * x:+.2f} %"
-
-
-def get(d, *keys):
-    for k in keys:
-        if not isinstance(d, dict) or k not in d:
-            return None
-        d = d[k]
-    return d
 
 
 def peak_or(row, default):

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/analytic.hpp"
+#include "core/averaging.hpp"
 #include "core/deconvolver.hpp"
 #include "core/meso_solver.hpp"
 #include "core/registry.hpp"
@@ -167,7 +168,9 @@ TEST(ReducedModel, FirstOrderBeatsZeroOrderUnderThePeriodicForce) {
 TEST(ReducedModel, SetupIsIndependentOfTheStripWidth) {
   // The solver's lattice quantities (ρ̄, F̄ (2.14), the wall constraint map) are per unit length of an
   // x-invariant scene, so it builds them on the narrowest strip; a 12- and a 48-column scene must then give the
-  // same coarse solution (the x-integrated coarse quadrature is width-independent too), to round-off.
+  // same coarse solution (the x-integrated coarse quadrature is width-independent too), to round-off. That the
+  // strip's quantities equal the full lattice's is checked by NarrowestStripGivesTheSameAverages (ρ̄, F̄) and
+  // WallConstraintMapEqualsTheDirectPairSweep (F_c against a sweep of the scene's full width).
   const Registry& reg = builtin_registry();
   Eigen::VectorXd v[2];
   int i = 0;
@@ -187,4 +190,25 @@ TEST(ReducedModel, SetupIsIndependentOfTheStripWidth) {
     v[i++] = r.v;
   }
   EXPECT_LT((v[0] - v[1]).cwiseAbs().maxCoeff(), 1e-10 * v[0].cwiseAbs().maxCoeff());
+}
+
+TEST(ReducedModel, NarrowestStripGivesTheSameAverages) {
+  // The solver's setup uses Scene::narrowest_strip(): on an x-invariant lattice the averages with periodic
+  // images in x are per unit length, so ρ̄ (2.8) and F̄ (2.14) on the narrow strip equal those of the 48-column
+  // scene to round-off (the sums differ only in summation order).
+  const Registry& reg = builtin_registry();
+  const auto scene = reg.scenes.create(json{{"name", "poiseuille-periodic"}, {"n_y", 48}, {"n_x", 48}}, "/scene");
+  const Scene strip = scene->narrowest_strip();
+  ASSERT_LT(strip.nx, scene->nx);
+  const auto kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", scene->eta}}, "/kernel");
+  const UniformMesh1D y_axis{scene->wall_lo, scene->eta, 9, false, 0.0};
+  AveragingRequest req;
+  req.external = true;
+  const auto average = [&](const Scene& s) {
+    const TensorMesh2D mesh{UniformMesh1D{0.0, s.box.lx, 1, true, s.box.lx}, y_axis};
+    return average_particles(s.make_particles(), s.box, *kernel, mesh, req, {}, s.force_x);
+  };
+  const MesoFields wide = average(*scene), narrow = average(strip);
+  EXPECT_LT((wide.rho - narrow.rho).cwiseAbs().maxCoeff(), 1e-12 * wide.rho.cwiseAbs().maxCoeff());
+  EXPECT_LT((wide.fx - narrow.fx).cwiseAbs().maxCoeff(), 1e-12 * wide.fx.cwiseAbs().maxCoeff());
 }

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <map>
 
-#include "core/deconvolver.hpp"
-#include "core/forward_operator.hpp"
-#include "core/registry.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/closure/forward_operator.hpp"
+#include "core/base/registry.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 
 using namespace closurelab;

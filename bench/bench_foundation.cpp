@@ -6,10 +6,10 @@
 
 #include <random>
 
-#include "core/neighbour_search.hpp"
-#include "core/registry.hpp"
-#include "core/scene.hpp"
-#include "core/sph_engine.hpp"
+#include "core/sph/neighbour_search.hpp"
+#include "core/base/registry.hpp"
+#include "core/sph/scene.hpp"
+#include "core/sph/sph_engine.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 
 using namespace closurelab;

@@ -14,9 +14,9 @@
 #include <functional>
 #include <memory>
 
-#include "core/averaging.hpp"
-#include "core/registry.hpp"
-#include "core/scene.hpp"
+#include "core/averaging/averaging.hpp"
+#include "core/base/registry.hpp"
+#include "core/sph/scene.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 #include "strategies/quadrature/coarse_quadrature.hpp"
 #include "strategies/quadrature/exact_quadrature.hpp"

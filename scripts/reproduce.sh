@@ -15,29 +15,29 @@ run() { build/experiments/closurelab run "$1" --out "$2" "${@:3}"; }
 PY=/usr/bin/python3; [ -x "$PY" ] || PY=python3   # Debian's python3 has python3-matplotlib for the figures
 
 run experiments/sph_validation.json results/sph_validation "$@"
-python3 experiments/summarize_validation.py results/sph_validation/sph_validation.json > results/sph_validation/summary.md
+python3 experiments/summaries/summarize_validation.py results/sph_validation/sph_validation.json > results/sph_validation/summary.md
 
 for s in square coarse_fine rules; do run "experiments/stability/$s.json" results/stability "$@"; done
-python3 results/stability/summarize.py results/stability/stability_{square,coarse_fine,rules}.json > results/stability/SUMMARY.md
+python3 experiments/summaries/summarize_stability.py results/stability/stability_{square,coarse_fine,rules}.json > results/stability/SUMMARY.md
 
 run experiments/paper/appendix_c.json results/paper/appendix_c "$@"
-python3 experiments/summarize_appendix_c.py results/paper/appendix_c/appendix_c.json > results/paper/appendix_c/summary.md
+python3 experiments/summaries/summarize_appendix_c.py results/paper/appendix_c/appendix_c.json > results/paper/appendix_c/summary.md
 run experiments/paper/appendix_b.json results/paper/appendix_b "$@"
-python3 experiments/summarize_appendix_b.py results/paper/appendix_b/appendix_b.json > results/paper/appendix_b/summary.md
+python3 experiments/summaries/summarize_appendix_b.py results/paper/appendix_b/appendix_b.json > results/paper/appendix_b/summary.md
 for f in fig2 fig3 fig4 kolmogorov speed_up; do
   run "experiments/paper/$f.json" "results/paper/$f" "$@"
-  "$PY" experiments/summarize_reduced_model.py "results/paper/$f/$f.json" "results/paper/$f/summary"
+  "$PY" experiments/summaries/summarize_reduced_model.py "results/paper/$f/$f.json" "results/paper/$f/summary"
 done
 
 for s in poiseuille_uniform poiseuille_periodic kolmogorov; do
   run "experiments/speed_vs_error/$s.json" "results/speed_vs_error/$s" "$@"
-  "$PY" experiments/summarize_pareto.py "results/speed_vs_error/$s/pareto_$s.json" "results/speed_vs_error/$s/summary"
+  "$PY" experiments/summaries/summarize_pareto.py "results/speed_vs_error/$s/pareto_$s.json" "results/speed_vs_error/$s/summary"
 done
 
 run experiments/paper/two_phase_direct.json results/two_phase/direct "$@"
-python3 experiments/summarize_two_phase.py results/two_phase/direct/two_phase_direct.json > results/two_phase/direct/summary.md
+python3 experiments/summaries/summarize_two_phase.py results/two_phase/direct/two_phase_direct.json > results/two_phase/direct/summary.md
 run experiments/paper/two_phase.json results/two_phase/two_phase "$@"
 run experiments/paper/two_phase_eta.json results/two_phase/two_phase_eta "$@"
-"$PY" experiments/summarize_two_phase_reduced.py results/two_phase/two_phase/two_phase.json \
+"$PY" experiments/summaries/summarize_two_phase_reduced.py results/two_phase/two_phase/two_phase.json \
   results/two_phase/two_phase_eta/two_phase_eta.json results/two_phase/reduced
 echo "reproduce: results written under results/"

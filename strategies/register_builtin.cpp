@@ -1,13 +1,14 @@
 #include "strategies/register_builtin.hpp"
 
-#include "core/averaging_kernel.hpp"
-#include "core/deconvolver.hpp"
-#include "core/scene.hpp"
-#include "core/stress_quadrature.hpp"
+#include "core/averaging/averaging_kernel.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/sph/scene.hpp"
+#include "core/closure/stress_quadrature.hpp"
 
 namespace closurelab {
 
 void register_builtin_strategies(Registry& r) {
+  if (r.kernels.contains("gaussian")) return;  // already registered
   register_kernels(r);
   register_deconvolvers(r);
   register_quadratures(r);

@@ -1,6 +1,6 @@
 #pragma once
 // One registration function per strategy family; register_builtin_strategies() calls them all.
-#include "core/registry.hpp"
+#include "core/base/registry.hpp"
 
 namespace closurelab {
 void register_kernels(Registry& r);        // strategies/kernels/

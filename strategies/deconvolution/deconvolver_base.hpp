@@ -5,10 +5,10 @@
 #include <cmath>
 #include <string>
 
-#include "core/deconvolver.hpp"
-#include "core/errors.hpp"
-#include "core/forward_operator.hpp"
-#include "core/parameter_choice.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/base/errors.hpp"
+#include "core/closure/forward_operator.hpp"
+#include "core/closure/parameter_choice.hpp"
 
 namespace closurelab {
 

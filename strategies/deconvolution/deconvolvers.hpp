@@ -3,8 +3,8 @@
 // Each factory takes the resolved JSON of its schema.
 #include <memory>
 
-#include "core/deconvolver.hpp"
-#include "core/params.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/base/params.hpp"
 
 namespace closurelab {
 

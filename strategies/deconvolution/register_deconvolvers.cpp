@@ -1,4 +1,4 @@
-#include "core/deconvolver.hpp"
+#include "core/closure/deconvolver.hpp"
 #include "strategies/deconvolution/deconvolvers.hpp"
 #include "strategies/register_builtin.hpp"
 

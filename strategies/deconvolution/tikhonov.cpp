@@ -12,7 +12,7 @@
 #include <memory>
 #include <unsupported/Eigen/KroneckerProduct>
 
-#include "core/spectral_basis.hpp"
+#include "core/closure/spectral_basis.hpp"
 #include "strategies/deconvolution/deconvolver_base.hpp"
 #include "strategies/deconvolution/deconvolvers.hpp"
 

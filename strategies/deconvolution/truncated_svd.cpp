@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/spectral_basis.hpp"
+#include "core/closure/spectral_basis.hpp"
 #include "strategies/deconvolution/deconvolver_base.hpp"
 #include "strategies/deconvolution/deconvolvers.hpp"
 

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "core/gsl_support.hpp"
+#include "core/base/errors.hpp"
+#include "core/base/gsl_support.hpp"
 #include "strategies/kernels/gaussian_segment.hpp"
 
 namespace closurelab {

@@ -1,5 +1,5 @@
 #pragma once
-#include "core/averaging_kernel.hpp"
+#include "core/averaging/averaging_kernel.hpp"
 
 namespace closurelab {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The Gaussian line integral behind the bond integral of Appendix A, in a numerically stable form.
-#include "core/mesh.hpp"
+#include "core/base/mesh.hpp"
 
 namespace closurelab {
 

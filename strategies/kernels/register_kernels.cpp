@@ -1,4 +1,4 @@
-#include "core/registry.hpp"
+#include "core/base/registry.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 #include "strategies/register_builtin.hpp"
 

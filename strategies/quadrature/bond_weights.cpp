@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/averaging.hpp"
-#include "core/errors.hpp"
+#include "core/averaging/averaging.hpp"
+#include "core/base/errors.hpp"
 
 namespace closurelab {
 

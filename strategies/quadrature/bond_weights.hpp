@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/averaging_kernel.hpp"
-#include "core/mesh.hpp"
-#include "core/particles.hpp"
+#include "core/averaging/averaging_kernel.hpp"
+#include "core/base/mesh.hpp"
+#include "core/sph/particles.hpp"
 
 namespace closurelab {
 

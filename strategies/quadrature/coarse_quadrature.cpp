@@ -8,9 +8,9 @@
 #include <map>
 #include <stdexcept>
 
-#include "core/errors.hpp"
-#include "core/sph_kernel.hpp"
-#include "core/sph_pair_force.hpp"
+#include "core/base/errors.hpp"
+#include "core/sph/sph_kernel.hpp"
+#include "core/sph/sph_pair_force.hpp"
 #include "strategies/quadrature/bond_weights.hpp"
 
 namespace closurelab {

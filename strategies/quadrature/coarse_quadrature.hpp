@@ -29,8 +29,8 @@
 // the strip's width: O(N_C J) with J ≈ π (support/ε')² offsets, independent of N.
 #include <Eigen/Core>
 
-#include "core/scene.hpp"
-#include "core/stress_quadrature.hpp"
+#include "core/sph/scene.hpp"
+#include "core/closure/stress_quadrature.hpp"
 
 namespace closurelab {
 

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "core/errors.hpp"
+#include "core/base/errors.hpp"
 #include "strategies/quadrature/bond_weights.hpp"
 
 namespace closurelab {

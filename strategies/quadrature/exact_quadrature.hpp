@@ -7,9 +7,9 @@
 // models, densities and pressures are those of direct SPH) and forms the weighted sum: O(N) per call.
 #include <memory>
 
-#include "core/scene.hpp"
-#include "core/sph_engine.hpp"
-#include "core/stress_quadrature.hpp"
+#include "core/sph/scene.hpp"
+#include "core/sph/sph_engine.hpp"
+#include "core/closure/stress_quadrature.hpp"
 
 namespace closurelab {
 

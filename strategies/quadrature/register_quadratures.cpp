@@ -1,4 +1,4 @@
-#include "core/stress_quadrature.hpp"
+#include "core/closure/stress_quadrature.hpp"
 #include "strategies/quadrature/coarse_quadrature.hpp"
 #include "strategies/quadrature/exact_quadrature.hpp"
 #include "strategies/register_builtin.hpp"

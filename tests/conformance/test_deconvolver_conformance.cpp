@@ -5,11 +5,11 @@
 #include <cmath>
 #include <random>
 
-#include "core/deconvolver.hpp"
-#include "core/errors.hpp"
-#include "core/forward_operator.hpp"
-#include "core/parameter_choice.hpp"
-#include "core/registry.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/base/errors.hpp"
+#include "core/closure/forward_operator.hpp"
+#include "core/closure/parameter_choice.hpp"
+#include "core/base/registry.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 
 using namespace closurelab;

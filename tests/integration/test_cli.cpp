@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/params.hpp"
+#include "core/base/params.hpp"
 
 namespace fs = std::filesystem;
 using closurelab::json;

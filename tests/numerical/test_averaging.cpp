@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/analytic.hpp"
-#include "core/averaging.hpp"
+#include "core/scenes/analytic.hpp"
+#include "core/averaging/averaging.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 
 using namespace closurelab;

@@ -9,10 +9,10 @@
 #include <cmath>
 #include <map>
 
-#include "core/deconvolver.hpp"
-#include "core/registry.hpp"
-#include "strategies/deconvolution/ill_posed_problems.hpp"
-#include "strategies/deconvolution/stability_case.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/base/registry.hpp"
+#include "experiments/testproblems/ill_posed_problems.hpp"
+#include "experiments/testproblems/stability_case.hpp"
 
 using namespace closurelab;
 

@@ -7,10 +7,10 @@
 
 #include <cmath>
 
-#include "core/deconvolver.hpp"
-#include "core/forward_operator.hpp"
-#include "core/reconstruction.hpp"
-#include "core/registry.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/closure/forward_operator.hpp"
+#include "core/closure/reconstruction.hpp"
+#include "core/base/registry.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 
 using namespace closurelab;

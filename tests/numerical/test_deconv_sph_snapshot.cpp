@@ -6,13 +6,13 @@
 
 #include <cmath>
 
-#include "core/averaging.hpp"
-#include "core/deconvolver.hpp"
-#include "core/forward_operator.hpp"
-#include "core/reconstruction.hpp"
-#include "core/registry.hpp"
-#include "core/scene.hpp"
-#include "core/sph_run.hpp"
+#include "core/averaging/averaging.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/closure/forward_operator.hpp"
+#include "core/closure/reconstruction.hpp"
+#include "core/base/registry.hpp"
+#include "core/sph/scene.hpp"
+#include "core/sph/sph_run.hpp"
 
 using namespace closurelab;
 

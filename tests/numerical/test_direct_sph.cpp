@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "core/registry.hpp"
-#include "core/scene.hpp"
-#include "core/sph_run.hpp"
+#include "core/base/registry.hpp"
+#include "core/sph/scene.hpp"
+#include "core/sph/sph_run.hpp"
 
 using namespace closurelab;
 

@@ -6,13 +6,13 @@
 
 #include <cmath>
 
-#include "core/analytic.hpp"
-#include "core/equation_of_state.hpp"
-#include "core/gsl_support.hpp"
-#include "core/registry.hpp"
-#include "core/scene.hpp"
-#include "core/sph_engine.hpp"
-#include "core/sph_run.hpp"
+#include "core/scenes/analytic.hpp"
+#include "core/sph/equation_of_state.hpp"
+#include "core/base/gsl_support.hpp"
+#include "core/base/registry.hpp"
+#include "core/sph/scene.hpp"
+#include "core/sph/sph_engine.hpp"
+#include "core/sph/sph_run.hpp"
 
 using namespace closurelab;
 

@@ -5,13 +5,13 @@
 
 #include <cmath>
 
-#include "core/analytic.hpp"
-#include "core/averaging.hpp"
-#include "core/deconvolver.hpp"
-#include "core/meso_solver.hpp"
-#include "core/registry.hpp"
-#include "core/scene.hpp"
-#include "core/stress_quadrature.hpp"
+#include "core/scenes/analytic.hpp"
+#include "core/averaging/averaging.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/reduced/meso_solver.hpp"
+#include "core/base/registry.hpp"
+#include "core/sph/scene.hpp"
+#include "core/closure/stress_quadrature.hpp"
 
 using namespace closurelab;
 

@@ -2,9 +2,9 @@
 // continuum limit of a linear shear; the coarse quadrature (5.27) on the same shear.
 #include <gtest/gtest.h>
 
-#include "core/averaging.hpp"
-#include "core/sph_engine.hpp"
-#include "core/sph_kernel.hpp"
+#include "core/averaging/averaging.hpp"
+#include "core/sph/sph_engine.hpp"
+#include "core/sph/sph_kernel.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 #include "strategies/quadrature/coarse_quadrature.hpp"
 #include "strategies/quadrature/exact_quadrature.hpp"

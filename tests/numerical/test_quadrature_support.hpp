@@ -8,10 +8,10 @@
 #include <memory>
 #include <string>
 
-#include "core/averaging.hpp"
-#include "core/registry.hpp"
-#include "core/scene.hpp"
-#include "core/stress_quadrature.hpp"
+#include "core/averaging/averaging.hpp"
+#include "core/base/registry.hpp"
+#include "core/sph/scene.hpp"
+#include "core/closure/stress_quadrature.hpp"
 
 namespace closurelab::quadrature_test {
 

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <random>
 
-#include "core/averaging.hpp"
-#include "core/registry.hpp"
-#include "core/scene.hpp"
-#include "core/sph_engine.hpp"
+#include "core/averaging/averaging.hpp"
+#include "core/base/registry.hpp"
+#include "core/sph/scene.hpp"
+#include "core/sph/sph_engine.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 #include "tests/numerical/test_quadrature_support.hpp"
 

@@ -4,10 +4,10 @@
 
 #include <limits>
 
-#include "core/deconvolver.hpp"
-#include "core/errors.hpp"
-#include "core/forward_operator.hpp"
-#include "core/registry.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/base/errors.hpp"
+#include "core/closure/forward_operator.hpp"
+#include "core/base/registry.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 
 using namespace closurelab;

@@ -6,9 +6,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/matrix_market.hpp"
-#include "experiments/deconvolve_command.hpp"
-#include "core/params.hpp"
+#include "core/io/matrix_market.hpp"
+#include "experiments/runner/deconvolve_command.hpp"
+#include "core/base/params.hpp"
 
 using namespace closurelab;
 

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <random>
 
-#include "core/errors.hpp"
-#include "core/forward_operator.hpp"
-#include "core/reconstruction.hpp"
+#include "core/base/errors.hpp"
+#include "core/closure/forward_operator.hpp"
+#include "core/closure/reconstruction.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 
 using namespace closurelab;

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/errors.hpp"
-#include "core/matrix_market.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/matrix_market.hpp"
 
 using namespace closurelab;
 

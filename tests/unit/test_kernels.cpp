@@ -6,8 +6,8 @@
 #include <cmath>
 #include <functional>
 
-#include "core/gsl_support.hpp"
-#include "core/sph_kernel.hpp"
+#include "core/base/gsl_support.hpp"
+#include "core/sph/sph_kernel.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 #include "strategies/kernels/gaussian_segment.hpp"
 

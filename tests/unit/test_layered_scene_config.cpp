@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "core/layered_scene.hpp"
-#include "core/registry.hpp"
-#include "core/scene.hpp"
-#include "core/sph_pair_force.hpp"
+#include "core/base/errors.hpp"
+#include "core/scenes/layered_scene.hpp"
+#include "core/base/registry.hpp"
+#include "core/sph/scene.hpp"
+#include "core/sph/sph_pair_force.hpp"
 
 using namespace closurelab;
 

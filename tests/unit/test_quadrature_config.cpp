@@ -1,8 +1,8 @@
 // Stress-quadrature configuration: registration, parameter validation and clear errors before running.
 #include <gtest/gtest.h>
 
-#include "core/errors.hpp"
-#include "experiments/experiment_kind.hpp"
+#include "core/base/errors.hpp"
+#include "experiments/kinds/experiment_kind.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 #include "strategies/quadrature/coarse_quadrature.hpp"
 #include "strategies/quadrature/exact_quadrature.hpp"

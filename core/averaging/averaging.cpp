@@ -1,0 +1,147 @@
+#include "core/averaging/averaging.hpp"
+
+#include <omp.h>
+
+#include <cmath>
+
+#include "core/base/errors.hpp"
+
+namespace closurelab {
+
+std::pair<int, int> component_index(const std::string& c) {
+  if (c.size() != 2 || (c[0] != 'x' && c[0] != 'y') || (c[1] != 'x' && c[1] != 'y'))
+    throw ConfigError("", "unknown tensor component '" + c + "'; known: xx, xy, yx, yy");
+  return {c[0] == 'x' ? 0 : 1, c[1] == 'x' ? 0 : 1};
+}
+
+TensorMesh2D column_mesh(const PeriodicBox& box, double spacing) {
+  const int n = std::max(1, static_cast<int>(std::round(box.ly / spacing)));
+  return TensorMesh2D{UniformMesh1D{0.0, box.lx, 1, box.periodic_x, box.lx},
+                      UniformMesh1D::cell_centred(0.0, box.ly, n, box.periodic_y)};
+}
+
+namespace {
+
+struct Weights {
+  std::vector<std::pair<int, double>> x, y;
+};
+
+// Separable window weights of one particle: ψ(node − q) = φ(Δx) φ(Δy), summed over images per axis.
+void particle_weights(const AveragingKernel& kernel, const TensorMesh2D& mesh, double qx, double qy, Weights& w) {
+  const double r = kernel.support_radius();
+  w.x.clear();
+  w.y.clear();
+  for_nodes_within(mesh.x, qx, r, [&](int i, double d) {
+    const double v = kernel.factor(d);
+    for (auto& e : w.x)
+      if (e.first == i) return void(e.second += v);
+    w.x.emplace_back(i, v);
+  });
+  for_nodes_within(mesh.y, qy, r, [&](int j, double d) {
+    const double v = kernel.factor(d);
+    for (auto& e : w.y)
+      if (e.first == j) return void(e.second += v);
+    w.y.emplace_back(j, v);
+  });
+}
+
+void check_mesh_axis(const UniformMesh1D& a, bool box_periodic, double box_length, const char* name) {
+  if (a.periodic != box_periodic || (a.periodic && std::abs(a.period - box_length) > 1e-12 * box_length))
+    throw ConfigError("", std::string("mesh ") + name + "-axis periodicity does not match the box");
+}
+
+}  // namespace
+
+MesoFields average_particles(const ParticleSystem& ps, const PeriodicBox& box, const AveragingKernel& kernel,
+                             const TensorMesh2D& mesh, const AveragingRequest& req, const std::vector<PairForce>& pairs,
+                             const std::function<double(double)>& force_x) {
+  check_mesh_axis(mesh.x, box.periodic_x, box.lx, "x");
+  check_mesh_axis(mesh.y, box.periodic_y, box.ly, "y");
+  const int nn = mesh.size();
+  MesoFields out;
+  out.rho = Eigen::VectorXd::Zero(nn);
+  out.mom_x = Eigen::VectorXd::Zero(nn);
+  out.mom_y = Eigen::VectorXd::Zero(nn);
+  if (req.external) {
+    if (!force_x) throw ConfigError("", "external force requested without a body force");
+    out.fx = Eigen::VectorXd::Zero(nn);
+    out.fy = Eigen::VectorXd::Zero(nn);
+  }
+  Weights w;
+  for (std::size_t a = 0; a < ps.size(); ++a) {
+    particle_weights(kernel, mesh, ps.x[a], ps.y[a], w);
+    const double m = ps.mass[a];
+    const double fext = (req.external && !ps.fixed[a]) ? m * force_x(ps.y[a]) : 0.0;
+    for (const auto& [j, wy] : w.y)
+      for (const auto& [i, wx] : w.x) {
+        const int n = mesh.index(i, j);
+        const double psi = wx * wy;
+        out.rho[n] += m * psi;
+        out.mom_x[n] += m * ps.vx[a] * psi;
+        out.mom_y[n] += m * ps.vy[a] * psi;
+        if (req.external) out.fx[n] += fext * psi;
+      }
+  }
+  out.vx = out.mom_x.cwiseQuotient(out.rho);
+  out.vy = out.mom_y.cwiseQuotient(out.rho);
+
+  if (req.convective) {
+    for (const auto& c : req.components) out.convective[c] = Eigen::VectorXd::Zero(nn);
+    for (std::size_t a = 0; a < ps.size(); ++a) {
+      particle_weights(kernel, mesh, ps.x[a], ps.y[a], w);
+      const double v[2] = {ps.vx[a], ps.vy[a]};
+      for (const auto& [j, wy] : w.y)
+        for (const auto& [i, wx] : w.x) {
+          const int n = mesh.index(i, j);
+          const double dv[2] = {out.vx[n] - v[0], out.vy[n] - v[1]};
+          for (auto& [c, field] : out.convective) {
+            const auto [r, s] = component_index(c);
+            field[n] -= ps.mass[a] * dv[r] * dv[s] * wx * wy;  // (2.12)
+          }
+        }
+    }
+  }
+
+  if (req.interaction) {
+    std::vector<std::pair<int, int>> comps;
+    for (const auto& c : req.components) comps.push_back(component_index(c));
+    for (std::size_t a = 0; a < comps.size(); ++a)
+      for (std::size_t b = 0; b < a; ++b)
+        if (comps[a] == comps[b]) throw ConfigError("", "tensor component '" + req.components[a] + "' requested twice");
+    const int nc = static_cast<int>(comps.size());
+    const double r = kernel.support_radius();
+    std::vector<std::vector<double>> acc(omp_get_max_threads(), std::vector<double>(nn * nc, 0.0));
+#pragma omp parallel
+    {
+      auto& buf = acc[omp_get_thread_num()];
+#pragma omp for schedule(dynamic, 256)
+      for (std::size_t p = 0; p < pairs.size(); ++p) {
+        const auto& pf = pairs[p];
+        const Vec2 qj(ps.x[pf.j], ps.y[pf.j]);
+        const Vec2 mid = qj + 0.5 * pf.d;
+        const double reach = r + 0.5 * pf.d.norm();
+        double tab[4];
+        for (int c = 0; c < nc; ++c) tab[c] = pf.f[comps[c].first] * pf.d[comps[c].second];
+        // Images of the bond's midpoint within reach of the nodes; the bond integral of each image.
+        for_nodes_within(mesh.y, mid.y(), reach, [&](int jy, double oy) {
+          for_nodes_within(mesh.x, mid.x(), reach, [&](int ix, double ox) {
+            const Vec2 node = mesh.node(ix, jy);
+            const Vec2 shift = node - Vec2(ox, oy) - mid;  // the periodic image shift
+            const double b = kernel.bond_integral(node, qj + shift, qj + shift + pf.d);
+            const int n = mesh.index(ix, jy);
+            for (int c = 0; c < nc; ++c) buf[n * nc + c] += tab[c] * b;  // (2.13)
+          });
+        });
+      }
+    }
+    for (int c = 0; c < nc; ++c) {
+      Eigen::VectorXd field = Eigen::VectorXd::Zero(nn);
+      for (const auto& buf : acc)
+        for (int n = 0; n < nn; ++n) field[n] += buf[n * nc + c];
+      out.interaction[req.components[c]] = field;
+    }
+  }
+  return out;
+}
+
+}  // namespace closurelab

@@ -1,0 +1,33 @@
+#pragma once
+// The averaging-kernel strategy family (DESIGN.md §2): the window ψ_η of (2.6)–(2.7), its Fourier symbol,
+// its support and the bond integral of Appendix A. All built-in kernels are separable,
+// ψ(x, y) = φ(x) φ(y), which the forward operators of the deconvolution use (A = A_y ⊗ A_x).
+#include <string>
+
+#include "core/base/mesh.hpp"
+
+namespace closurelab {
+
+class AveragingKernel {
+ public:
+  virtual ~AveragingKernel() = default;
+
+  virtual std::string name() const = 0;
+  // η' (the length scale of the window).
+  virtual double eta() const = 0;
+  // The 1D factor φ with ψ(x, y) = φ(x) φ(y); ∫ φ = 1.
+  virtual double factor(double t) const = 0;
+  // Fourier symbol of the 1D factor, ∫ φ(t) e^{-2πiξt} dt (real, the factor is even).
+  virtual double factor_symbol(double xi) const = 0;
+  // Radius beyond which φ is zero or below 1e-16 of its peak, per coordinate: the numerical support.
+  virtual double support_radius() const = 0;
+  // Appendix A: ∫₀¹ ψ(s(x − q_k) + (1 − s)(x − q_j)) ds, for the bond from q_j to q_k.
+  virtual double bond_integral(const Vec2& x, const Vec2& qj, const Vec2& qk) const = 0;
+
+  // ψ(r) in 2D.
+  double value(const Vec2& r) const { return factor(r.x()) * factor(r.y()); }
+  // 2D Fourier symbol (4.15 for the Gaussian): ψ̂(ξ) = φ̂(ξ_x) φ̂(ξ_y).
+  double symbol(const Vec2& xi) const { return factor_symbol(xi.x()) * factor_symbol(xi.y()); }
+};
+
+}  // namespace closurelab

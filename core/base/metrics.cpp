@@ -1,0 +1,33 @@
+#include "core/base/metrics.hpp"
+
+#include <cmath>
+
+namespace closurelab {
+
+json ErrorNorms::to_json() const {
+  if (count == 0) return {{"max_rel", nullptr}, {"l2_rel", nullptr}, {"count", 0}};  // an empty subset has no error
+  return {{"max_rel", max_rel}, {"l2_rel", l2_rel}, {"count", count}};
+}
+
+ErrorNorms error_norms(const Eigen::VectorXd& u, const Eigen::VectorXd& ref, const std::vector<bool>& mask,
+                       double scale) {
+  ErrorNorms e;
+  double num = 0.0, den = 0.0;
+  for (Eigen::Index k = 0; k < u.size(); ++k) {
+    if (!mask[k]) continue;
+    const double d = u[k] - ref[k];
+    e.max_rel = std::max(e.max_rel, std::abs(d));
+    num += d * d;
+    den += ref[k] * ref[k];
+    ++e.count;
+  }
+  e.max_rel = scale > 0 ? e.max_rel / scale : e.max_rel;
+  e.l2_rel = den > 0 ? std::sqrt(num / den) : std::sqrt(num);
+  return e;
+}
+
+double peak_relative_difference(const Eigen::VectorXd& u, const Eigen::VectorXd& ref) {
+  return (u.maxCoeff() - ref.maxCoeff()) / ref.maxCoeff();
+}
+
+}  // namespace closurelab

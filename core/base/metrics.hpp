@@ -1,0 +1,25 @@
+#pragma once
+// Error norms for comparing a solution with a reference, over a subset of points.
+#include <Eigen/Core>
+#include <vector>
+
+#include "core/base/params.hpp"
+
+namespace closurelab {
+
+struct ErrorNorms {
+  double max_rel = 0.0;  // max |u − ref| / scale
+  double l2_rel = 0.0;   // ‖u − ref‖₂ / ‖ref‖₂ over the subset
+  int count = 0;
+  json to_json() const;
+};
+
+// Norms over the points where mask is true. `scale` normalizes the max error (e.g. the reference's peak
+// over the whole channel, so that near-wall points with tiny reference values do not blow up).
+ErrorNorms error_norms(const Eigen::VectorXd& u, const Eigen::VectorXd& ref, const std::vector<bool>& mask,
+                       double scale);
+
+// The paper's §7 metric: relative difference of the peak values, (max u − max ref) / max ref.
+double peak_relative_difference(const Eigen::VectorXd& u, const Eigen::VectorXd& ref);
+
+}  // namespace closurelab

@@ -1,0 +1,146 @@
+#include "core/base/params.hpp"
+
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "core/base/errors.hpp"
+
+namespace closurelab {
+
+
+ParamSpec number_param(std::string name, json def, std::string description, std::optional<double> min,
+                       std::optional<double> max, bool exclusive_min) {
+  return ParamSpec{std::move(name), ParamType::Number, std::move(def), std::move(description), min, max, exclusive_min};
+}
+ParamSpec integer_param(std::string name, json def, std::string description, std::optional<double> min,
+                        std::optional<double> max) {
+  return ParamSpec{std::move(name), ParamType::Integer, std::move(def), std::move(description), min, max};
+}
+ParamSpec string_param(std::string name, json def, std::string description, std::vector<std::string> choices) {
+  ParamSpec p{std::move(name), ParamType::String, std::move(def), std::move(description)};
+  p.choices = std::move(choices);
+  return p;
+}
+ParamSpec bool_param(std::string name, bool def, std::string description) {
+  return ParamSpec{std::move(name), ParamType::Boolean, def, std::move(description)};
+}
+ParamSpec object_param(std::string name, json def, std::string description) {
+  return ParamSpec{std::move(name), ParamType::Object, std::move(def), std::move(description)};
+}
+ParamSpec array_param(std::string name, json def, std::string description) {
+  return ParamSpec{std::move(name), ParamType::Array, std::move(def), std::move(description)};
+}
+
+std::string to_string(ParamType t) {
+  switch (t) {
+    case ParamType::Integer: return "integer";
+    case ParamType::Number: return "number";
+    case ParamType::String: return "string";
+    case ParamType::Boolean: return "boolean";
+    case ParamType::Object: return "object";
+    case ParamType::Array: return "array";
+  }
+  return "?";
+}
+
+namespace {
+
+bool type_matches(const json& v, ParamType t) {
+  switch (t) {
+    case ParamType::Integer: return v.is_number_integer();
+    case ParamType::Number: return v.is_number();
+    case ParamType::String: return v.is_string();
+    case ParamType::Boolean: return v.is_boolean();
+    case ParamType::Object: return v.is_object();
+    case ParamType::Array: return v.is_array();
+  }
+  return false;
+}
+
+std::string allowed_keys(const ParamSchema& schema) {
+  std::string s;
+  for (const auto& p : schema) s += (s.empty() ? "" : ", ") + p.name;
+  return s.empty() ? "(none)" : s;
+}
+
+}  // namespace
+
+json resolve_params(const json& given, const ParamSchema& schema, const std::string& path,
+                    const std::vector<std::string>& passthrough) {
+  if (!given.is_null() && !given.is_object())
+    throw ConfigError(path, "expected an object, got " + std::string(given.type_name()));
+  json out = json::object();
+  if (given.is_object()) {
+    for (const auto& [key, value] : given.items()) {
+      bool known = false;
+      for (const auto& p : schema) known = known || p.name == key;
+      for (const auto& k : passthrough) known = known || k == key;
+      if (!known) throw ConfigError(path + "/" + key, "unknown key; allowed keys: " + allowed_keys(schema));
+      if (std::find(passthrough.begin(), passthrough.end(), key) != passthrough.end()) out[key] = value;
+    }
+  }
+  for (const auto& p : schema) {
+    const std::string at = path + "/" + p.name;
+    json v;
+    if (given.is_object() && given.contains(p.name)) {
+      v = given.at(p.name);
+    } else if (p.default_value.is_null()) {
+      throw ConfigError(at, "required parameter is missing (" + p.description + ")");
+    } else {
+      v = p.default_value;
+    }
+    if (!type_matches(v, p.type))
+      throw ConfigError(at, "expected " + to_string(p.type) + ", got " + std::string(v.type_name()) + " (" + v.dump() + ")");
+    if (p.type == ParamType::Number || p.type == ParamType::Integer) {
+      const double x = v.get<double>();
+      if (!std::isfinite(x)) throw ConfigError(at, "must be finite");
+      if (p.min && (p.exclusive_min ? !(x > *p.min) : !(x >= *p.min)))
+        throw ConfigError(at, "value " + v.dump() + " must be " + (p.exclusive_min ? "> " : ">= ") + json(*p.min).dump());
+      if (p.max && !(x <= *p.max)) throw ConfigError(at, "value " + v.dump() + " must be <= " + json(*p.max).dump());
+    }
+    if (p.type == ParamType::String && !p.choices.empty()) {
+      const auto s = v.get<std::string>();
+      if (std::find(p.choices.begin(), p.choices.end(), s) == p.choices.end()) {
+        std::string c;
+        for (const auto& ch : p.choices) c += (c.empty() ? "" : ", ") + ch;
+        throw ConfigError(at, "'" + s + "' is not one of: " + c);
+      }
+    }
+    out[p.name] = v;
+  }
+  return out;
+}
+
+json schema_to_json(const ParamSchema& schema) {
+  json a = json::array();
+  for (const auto& p : schema) {
+    json e = {{"name", p.name}, {"type", to_string(p.type)}, {"default", p.default_value}, {"description", p.description}};
+    if (p.min) e["min"] = *p.min;
+    if (p.max) e["max"] = *p.max;
+    if (p.exclusive_min) e["exclusive_min"] = true;
+    if (!p.choices.empty()) e["choices"] = p.choices;
+    a.push_back(e);
+  }
+  return a;
+}
+
+json read_json_file(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw ConfigError("", "cannot open '" + file + "'");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  try {
+    return json::parse(ss.str());
+  } catch (const json::exception& e) {  // syntax errors, and numbers that overflow (1e999)
+    throw ConfigError("", "malformed JSON in '" + file + "': " + e.what());
+  }
+}
+
+double require_finite(double x, const std::string& what) {
+  if (!std::isfinite(x)) throw NumericalError(what + " is not finite");
+  return x;
+}
+
+}  // namespace closurelab

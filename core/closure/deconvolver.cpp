@@ -1,0 +1,44 @@
+#include "core/closure/deconvolver.hpp"
+
+#include <cmath>
+
+#include "core/base/errors.hpp"
+#include "core/closure/forward_operator.hpp"
+
+namespace closurelab {
+
+std::string to_string(DeconvolutionStatus s) {
+  switch (s) {
+    case DeconvolutionStatus::converged: return "converged";
+    case DeconvolutionStatus::no_convergence: return "no_convergence";
+    case DeconvolutionStatus::numerical_issue: return "numerical_issue";
+  }
+  return "?";
+}
+
+json DeconvolutionResult::to_json() const {
+  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  return json{{"status", to_string(status)},
+              {"stats",
+               {{"iterations", stats.iterations},
+                {"residual_norm", num(stats.residual_norm)},
+                {"solution_norm", num(stats.solution_norm)},
+                {"chosen_parameter", num(stats.chosen_parameter)},
+                {"parameter_name", stats.parameter_name},
+                {"rule", stats.rule},
+                {"message", stats.message}}},
+              {"cost",
+               {{"matvecs", cost.matvecs}, {"setup_seconds", cost.setup_seconds}, {"solve_seconds", cost.solve_seconds}}}};
+}
+
+void check_solve_input(const ForwardOperator& A, const Eigen::VectorXd& b, double noise_level) {
+  if (b.size() != A.rows())
+    throw ConfigError("/rhs", "right-hand side has " + std::to_string(b.size()) + " entries but the operator has " +
+                                  std::to_string(A.rows()) + " rows");
+  for (Eigen::Index i = 0; i < b.size(); ++i)
+    if (!std::isfinite(b(i))) throw ConfigError("/rhs", "right-hand side entry " + std::to_string(i) + " is not finite");
+  if (!std::isfinite(noise_level) || noise_level < 0)
+    throw ConfigError("/noise_level", "noise level must be finite and >= 0, got " + std::to_string(noise_level));
+}
+
+}  // namespace closurelab

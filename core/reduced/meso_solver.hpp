@@ -1,0 +1,110 @@
+#pragma once
+// The reduced model (§5.2, §6, §7): the coarse balance (5.8), ρ̄ ∂_t v̄_x = ∂_y T_int,xy + F̄_x, for an
+// x-invariant scene, stepped on a coarse mesh across the channel (spacing ≈ η') by the explicit scheme
+// (5.11)–(5.14) with the time step (5.21)–(5.22) at Δ = mesh spacing. Each step closes the stress:
+//   deconvolve v̄ (any registered Deconvolver, at the named discretization of §4.2) → the reconstruction,
+//   sampled at the points the quadrature asks for (points in walls at rest) → T_int by the chosen
+//   StressQuadrature (exact pair sum (2.13) or coarse (5.27)) → update.
+// v̄ = 0 on the wall nodes (5.6)/(5.14), which are therefore not deconvolution data; F̄ is the averaged external force (2.14) of the lattice, divided by
+// the averaged density (2.8). A conservative (staggered) variant evaluates T at mid-nodes and updates by
+// the flux difference.
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/averaging/averaging_kernel.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/closure/forward_operator.hpp"
+#include "core/base/params.hpp"
+#include "core/sph/scene.hpp"
+#include "core/sph/sph_engine.hpp"
+#include "core/closure/stress_quadrature.hpp"
+
+namespace closurelab {
+
+struct MesoSolverOptions {
+  double kappa = 0.25;                 // (5.21)–(5.22)
+  double spacing_over_eta = 1.0;       // coarse mesh spacing Δ / η' (the paper: 1)
+  std::string scheme = "paper";        // "paper": (5.11)–(5.14); "staggered": conservative flux form
+  Discretization discretization = Discretization::coarse_coarse;
+  double noise_level = 0.0;            // δ handed to the deconvolver's parameter rule
+  bool to_steady_state = true;
+  double target_time = 0.0;
+  double steady_tolerance = 1e-5;      // max|Δv̄| / max|v̄| over the window (as the direct solver)
+  int steady_window = 1000;
+  double max_time = 100.0;
+  // Divergence: stop (numerical_issue) when max|v̄| exceeds this multiple of the scene's analytic peak; an
+  // unstable closure otherwise runs on with (5.21) shrinking the step without bound.
+  double divergence_factor = 1e3;
+  std::int64_t max_steps = 10000000;
+  double progress_seconds = 10.0;
+  std::function<void(const std::string&)> progress;
+  // Snapshots (ascending model times): the run lands a step on each and calls on_snapshot(time, v̄).
+  std::vector<double> snapshot_times;
+  std::function<void(double time, const Eigen::VectorXd& v)> on_snapshot;
+  // Wall particles are held at rest by constraint forces that (5.8) does not contain (DESIGN.md §6). When
+  // true, their average F_c(y) = −Σ_walls f_i^int ψ(y − q_i), with f_i^int the pair forces (5.1) on wall
+  // particle i under the reconstructed velocities, is added to the coarse balance. Costs one pair-force
+  // sweep of the lattice per row next to a wall at setup; per step, O(nodes × those rows).
+  bool wall_constraint_forces = false;
+};
+
+struct MesoResult {
+  std::string status;  // converged, target_time, no_convergence, numerical_issue
+  std::string message;
+  std::int64_t steps = 0;
+  double time = 0.0, dt = 0.0, wall_seconds = 0.0, last_relative_change = 0.0;
+  Eigen::VectorXd y, v;  // coarse nodes and v̄_x there
+  long deconvolution_matvecs = 0;
+  double deconvolution_seconds = 0.0, quadrature_seconds = 0.0;
+  QuadratureCost quadrature_cost;
+  json to_json() const;  // everything but the profile
+};
+
+class MesoSolver {
+ public:
+  // The kernel, deconvolver and quadrature must outlive the solver. Throws ConfigError when the scene or
+  // options do not fit (no x-invariance, too few coarse nodes).
+  MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconvolver& deconvolver, StressQuadrature& quadrature,
+             MesoSolverOptions options);
+
+  MesoResult run();
+  // v̄ on the coarse nodes, and the closure's reconstruction sampled at points (for diagnostics/tests).
+  const Eigen::VectorXd& velocity() const { return v_; }
+  const UniformMesh1D& coarse_mesh() const { return coarse_; }
+  Eigen::Matrix2Xd sample_reconstruction(const std::vector<Vec2>& points);
+  // The averaged wall constraint forces at the coarse nodes for the current v̄ (deconvolves first); zero
+  // when the option is off.
+  Eigen::VectorXd wall_constraint_force();
+  // Sets v̄ (e.g. an initial state other than rest); wall nodes are forced to zero.
+  void set_velocity(const Eigen::VectorXd& v);
+  // One step of size dt; returns false on a numerical issue (message in `issue`).
+  bool step(double dt, std::string& issue);
+  double time_step() const;
+
+ private:
+  bool close_stress(std::string& issue);  // deconvolve + quadrature → t_
+  Eigen::VectorXd constraint_force();     // F_c at the coarse nodes for the current reconstruction
+  void build_constraint_map();
+
+  const Scene& scene_;
+  const AveragingKernel& kernel_;
+  Deconvolver& deconvolver_;
+  StressQuadrature& quadrature_;
+  MesoSolverOptions opt_;
+  UniformMesh1D coarse_, data_, fine_, stress_axis_;  // data_: the nodes whose v̄ is deconvolved
+  ForwardOperator op_;
+  bool periodic_ = false;
+  Eigen::VectorXd v_, accel_force_, rho_bar_, t_, reconstruction_;
+  // The wall constraint forces as an affine map of the reconstruction on the fluid rows next to the walls.
+  Eigen::VectorXd constraint_offset_;
+  Eigen::MatrixXd constraint_map_;
+  std::vector<Vec2> constraint_rows_;  // one sample point (x = 0, y of the row) per column of the map
+  long matvecs_ = 0;
+  double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
+};
+
+}  // namespace closurelab

@@ -1,0 +1,48 @@
+#include "core/sph/neighbour_search.hpp"
+
+#include <numeric>
+
+namespace closurelab {
+
+namespace detail {
+
+CellGrid make_cell_grid(const ParticleSystem& ps, const std::vector<std::int32_t>& subset, const PeriodicBox& box,
+                        double radius) {
+  CellGrid g{};
+  g.px = box.periodic_x;
+  g.py = box.periodic_y;
+  double xmin = 0.0, xmax = box.lx, ymin = 0.0, ymax = box.ly;
+  if (!g.px || !g.py) {
+    double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+    for (int a : subset) {
+      lo_x = std::min(lo_x, ps.x[a]);
+      hi_x = std::max(hi_x, ps.x[a]);
+      lo_y = std::min(lo_y, ps.y[a]);
+      hi_y = std::max(hi_y, ps.y[a]);
+    }
+    if (!g.px) xmin = lo_x, xmax = hi_x + 1e-12;
+    if (!g.py) ymin = lo_y, ymax = hi_y + 1e-12;
+  }
+  auto axis = [radius](double lo, double hi, bool periodic, const char* name, double& origin, double& size, int& n) {
+    n = std::max(1, static_cast<int>(std::floor((hi - lo) / radius)));
+    if (periodic && n < 3)
+      throw ConfigError("", std::string("periodic ") + name + "-extent holds fewer than 3 interaction radii; widen the domain");
+    origin = lo;
+    size = (hi - lo) / n;
+    if (!(size > 0)) size = radius, n = 1;
+  };
+  axis(xmin, xmax, g.px, "x", g.x0, g.cx, g.nx);
+  axis(ymin, ymax, g.py, "y", g.y0, g.cy, g.ny);
+  return g;
+}
+
+}  // namespace detail
+
+void sort_by_cell(const ParticleSystem& ps, std::vector<std::int32_t>& subset, const PeriodicBox& box, double cell) {
+  const detail::CellGrid g = detail::make_cell_grid(ps, subset, box, cell);
+  std::vector<std::int64_t> key(ps.size(), 0);
+  for (int a : subset) key[a] = static_cast<std::int64_t>(g.cell_y(ps.y[a])) * g.nx + g.cell_x(ps.x[a]);
+  std::stable_sort(subset.begin(), subset.end(), [&](int a, int b) { return key[a] < key[b]; });
+}
+
+}  // namespace closurelab

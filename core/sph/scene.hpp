@@ -1,0 +1,107 @@
+#pragma once
+// A scene (DESIGN.md §1, §5): geometry, walls, phases, body force, the SPH discretization, the stress
+// components the engine must compute, and the analytic steady solution where one exists.
+// Scenes are registered by name in the registry's "scene" family (core/scenes.cpp).
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/sph/equation_of_state.hpp"
+#include "core/base/mesh.hpp"
+#include "core/base/params.hpp"
+#include "core/sph/particles.hpp"
+#include "core/sph/sph_pair_force.hpp"
+
+namespace closurelab {
+
+enum class WallModel {
+  ZeroVelocity,   // (5.3): wall particles at rest, used as they are in the pair forces
+  GhostVelocity,  // Morris et al. (1997): in a fluid–wall pair the wall particle carries −(d_wall/d_fluid) v_fluid
+};
+
+struct Scene {
+  std::string name;
+  json params;  // the resolved scene parameters, echoed into every output
+
+  // Geometry: box [0, lx) x [0, ly), square lattice of spacing dx (ε'), nx by ny particles.
+  PeriodicBox box;
+  int nx = 0, ny = 0;
+  double dx = 0.0;
+  double eta = 0.0;  // η', the averaging scale; walls are 3η' thick (5.3)
+  bool has_walls = false;
+  double wall_lo = 0.0, wall_hi = 0.0;  // l1, l2 of (5.15)
+  WallModel wall_model = WallModel::ZeroVelocity;
+  double ghost_beta_max = 0.0;
+
+  // Material and forcing (model units).
+  double rho0 = 1.0;
+  std::vector<double> phase_viscosity{1.0};
+  // The phase at height y (index into phase_viscosity), for fluid and wall particles alike (walls take the
+  // phase of the fluid next to them). Empty: phase 0 everywhere.
+  std::function<int(double y)> phase_at;
+  // Heights of the phase interfaces inside the channel (between lattice rows), ascending; empty if one phase.
+  std::vector<double> interfaces;
+  // μ_ij of (5.1) for unlike particles (core/sph_pair_force.hpp).
+  PairViscosityMean pair_viscosity_mean = PairViscosityMean::Arithmetic;
+  std::function<double(double y)> force_x;  // body force per unit mass along x
+
+  // SPH discretization.
+  std::string smoothing_kernel = "quintic";
+  double h = 0.0;            // smoothing length
+  double sound_speed = 0.0;  // >= 10x the peak velocity
+  // Equation of state: the weakly compressible P = c²(m n − ρ0) + background_pressure unless van_der_waals
+  // is set (7.1) (core/equation_of_state.hpp).
+  double background_pressure = 0.0;
+  std::optional<VanDerWaalsEos> van_der_waals;
+
+  // What the engine computes: the flow is x-invariant (fields depend on y only) and the stress
+  // components needed (Poiseuille: T_xy only, §5.2).
+  bool x_invariant = true;
+  std::vector<std::string> stress_components{"xy"};
+
+  // The analytic steady velocity v_x(y) where known (empty otherwise), and its peak.
+  std::function<double(double y)> analytic_vx;
+  double analytic_peak = 0.0;
+  // Scenes whose steady solution is a single sine mode v_x = amplitude · sin(wavenumber · y) (kolmogorov) say
+  // so: the reduced model then compares its steady amplitude with the Landweber prediction (DESIGN.md §5).
+  struct SineMode {
+    double wavenumber = 0.0;  // radians per unit length
+    double amplitude = 0.0;
+  };
+  std::optional<SineMode> steady_sine_mode;
+
+  bool is_wall(double y) const { return has_walls && (y < wall_lo || y > wall_hi); }
+  // For an x-invariant scene, the same scene on the narrowest periodic strip the SPH engine accepts (3 supports
+  // plus the list skin): per-unit-length quantities (averages with periodic images, pair sums per column) are
+  // the same on it; otherwise the scene itself.
+  Scene narrowest_strip() const;
+  // Lattice particles: (i + 1/2) dx, (j + 1/2) dx; walls held fixed; mass so that the SPH density is rho0.
+  ParticleSystem make_particles() const;
+  double particle_mass() const;
+  double max_viscosity() const;
+  int phase(double y) const { return phase_at ? phase_at(y) : 0; }
+  // Viscosity of the phase at a point (single-phase scenes: the one phase).
+  double viscosity_at(const Vec2& point) const;
+  // The pressure of a particle of mass m at number density n in a like pair (k_ij = 1 in (7.1)).
+  double pressure(double n, double mass) const {
+    return van_der_waals ? van_der_waals->pressure(n, 1.0)
+                         : weakly_compressible_pressure(mass * n, rho0, sound_speed, background_pressure);
+  }
+  // What an unlike pair adds to each of P_i/n_i² and P_j/n_j² in (5.1): (1 − k*) c_2 under (7.1), else 0.
+  double unlike_pair_excess_over_n2() const { return van_der_waals ? van_der_waals->unlike_excess_over_n2() : 0.0; }
+  // The lattice number density n* = rho0 / m and the constant pressure P* = P(n*) of the incompressible
+  // closure (§5.2: positions are kept intact), of like pairs.
+  double lattice_number_density() const { return rho0 / particle_mass(); }
+  double rest_pressure() const {
+    if (!van_der_waals) return background_pressure;
+    const double m = particle_mass();
+    return van_der_waals->pressure(rho0 / m, 1.0);
+  }
+};
+
+// Scene parameters shared by the scene schemas: the wall model (walled scenes) and the SPH discretization.
+ParamSchema wall_model_params();
+ParamSchema sph_discretization_params();  // smoothing_kernel, h_over_dx, sound_speed_factor
+
+}  // namespace closurelab

@@ -1,0 +1,129 @@
+#include "core/sph/sph_run.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "core/base/snapshot_schedule.hpp"
+#include "core/sph/sph_engine.hpp"
+
+namespace closurelab {
+
+json SphRunResult::to_json() const {
+  return {{"status", status},
+          {"steps", steps},
+          {"time", time},
+          {"dt", dt},
+          {"wall_seconds", wall_seconds},
+          {"last_relative_change", last_relative_change},
+          {"moving_particles", moving_particles},
+          {"active_particles", active_particles},
+          {"total_particles", total_particles},
+          {"particle_steps", static_cast<double>(moving_particles) * static_cast<double>(steps)},
+          {"pair_evaluations", pair_evaluations},
+          {"list_rebuilds", list_rebuilds}};
+}
+
+SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRunOptions& opt) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  auto last_report = t0;
+  SphEngine engine(scene, ps);
+  SphRunResult res;
+  res.total_particles = static_cast<std::int64_t>(ps.size());
+  res.moving_particles = static_cast<std::int64_t>(engine.moving().size());
+  engine.compute_accelerations();
+  const auto observe = [&]() -> Eigen::VectorXd {
+    if (opt.observable) return opt.observable(ps);
+    Eigen::VectorXd v(engine.moving().size());
+    for (std::size_t k = 0; k < engine.moving().size(); ++k) v[k] = ps.vx[engine.moving()[k]];
+    return v;
+  };
+  Eigen::VectorXd reference = observe();
+  auto relative_change = [&]() {
+    const Eigen::VectorXd now = observe();
+    const double mag = now.cwiseAbs().maxCoeff(), diff = (now - reference).cwiseAbs().maxCoeff();
+    reference = now;
+    return mag > 0.0 ? diff / mag : (diff > 0.0 ? 1.0 : 0.0);
+  };
+  res.status = "no_convergence";
+  SnapshotSchedule snapshots(opt.snapshot_times);
+  while (res.steps < opt.max_steps) {
+    const double dt_full = engine.time_step(opt.kappa);  // reported; snapshots and the target time may shorten a step
+    double dt = snapshots.clamp(res.time, dt_full);
+    if (!opt.to_steady_state) {
+      if (res.time >= opt.target_time * (1.0 - 1e-14)) {
+        res.status = "target_time";
+        break;
+      }
+      dt = std::min(dt, opt.target_time - res.time);
+    } else if (res.time >= opt.max_time) {
+      break;
+    }
+    engine.step(dt);
+    res.dt = dt_full;
+    res.time += dt;
+    ++res.steps;
+    if (snapshots.due(res.time) && opt.on_snapshot) opt.on_snapshot(res.time, ps);
+    if (res.steps % opt.steady_window == 0) {
+      for (int a : engine.moving()) {
+        if (!std::isfinite(ps.vx[a]) || !std::isfinite(ps.vy[a]) || !std::isfinite(ps.x[a]) || !std::isfinite(ps.y[a])) {
+          res.status = "numerical_issue";
+          break;
+        }
+      }
+      if (res.status == "numerical_issue") break;
+      res.last_relative_change = relative_change();
+      if (opt.to_steady_state && res.steps > opt.steady_window && res.last_relative_change < opt.steady_tolerance) {
+        res.status = "converged";
+        break;
+      }
+      const auto now = clock::now();
+      if (opt.progress && std::chrono::duration<double>(now - last_report).count() >= opt.progress_seconds) {
+        last_report = now;
+        std::ostringstream os;
+        os << "direct SPH: step " << res.steps << ", t = " << res.time << ", dt = " << dt_full
+           << ", max|v| = " << engine.max_speed() << ", change over " << opt.steady_window
+           << " steps = " << res.last_relative_change;
+        opt.progress(os.str());
+      }
+    }
+  }
+  if (res.status != "numerical_issue")
+    for (int a : engine.moving())
+      if (!std::isfinite(ps.vx[a]) || !std::isfinite(ps.vy[a]) || !std::isfinite(ps.x[a]) || !std::isfinite(ps.y[a])) {
+        res.status = "numerical_issue";  // also between the periodic checks, e.g. at the target time
+        break;
+      }
+  res.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  res.pair_evaluations = engine.pair_evaluations();
+  res.list_rebuilds = engine.list_rebuilds();
+  res.active_particles = static_cast<std::int64_t>(engine.active_count());
+  return res;
+}
+
+ParamSchema sph_solver_schema() {
+  return {
+      number_param("kappa", 0.25, "time-step coefficient kappa of (5.21)-(5.22)", 0.0, 1.0, true),
+      string_param("mode", "steady", "steady: run to steady state; target_time: run to target_time", {"steady", "target_time"}),
+      number_param("target_time", 0.0, "model time to reach in target_time mode", 0.0, {}),
+      number_param("steady_tolerance", 1e-5, "steady state: max relative change of v_x over the window", 0.0, 1.0, true),
+      integer_param("steady_window", 1000, "steady state: window in steps", 1, {}),
+      number_param("max_time", 100.0, "give up (no_convergence) after this model time", 0.0, {}, true),
+      integer_param("max_steps", 50000000, "give up after this many steps", 1, {}),
+  };
+}
+
+SphRunOptions sph_run_options_from(const json& s) {
+  SphRunOptions o;
+  o.kappa = s.at("kappa").get<double>();
+  o.to_steady_state = s.at("mode") == "steady";
+  o.target_time = s.at("target_time").get<double>();
+  o.steady_tolerance = s.at("steady_tolerance").get<double>();
+  o.steady_window = s.at("steady_window").get<int>();
+  o.max_time = s.at("max_time").get<double>();
+  o.max_steps = s.at("max_steps").get<std::int64_t>();
+  return o;
+}
+
+}  // namespace closurelab

@@ -1,0 +1,35 @@
+#pragma once
+// An experiment kind: how one cell of an experiment matrix is validated and run. The runner
+// (experiments/runner.hpp) expands the matrix, validates every cell with `resolve` before running any,
+// then calls `run` per cell and writes the rows.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/base/params.hpp"
+#include "core/base/registry.hpp"
+
+namespace closurelab {
+
+// Progress lines go to stderr; experiment kinds call this on long runs.
+using ProgressFn = std::function<void(const std::string& line)>;
+
+class ExperimentKind {
+ public:
+  virtual ~ExperimentKind() = default;
+  virtual std::string name() const = 0;
+  virtual std::string description() const = 0;
+  // Validates one cell (the merged JSON object, found at JSON `path`) and returns it with every default
+  // filled in. Throws ConfigError naming the JSON path of anything wrong. Must not run anything costly.
+  virtual json resolve(const json& cell, const std::string& path, const Registry& registry) const = 0;
+  // Runs a resolved cell. Returns a row object with at least "errors" and "cost" objects and a "status"
+  // string ("ok", "no_convergence", "numerical_issue"); the runner adds the resolved parameters.
+  virtual json run(const json& resolved, const Registry& registry, const ProgressFn& progress) const = 0;
+};
+
+// All experiment kinds known to the runner (experiments/experiment_kinds.cpp lists them explicitly).
+const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds();
+const ExperimentKind& find_experiment_kind(const std::string& name, const std::string& path);
+
+}  // namespace closurelab

@@ -1,0 +1,282 @@
+// Experiment kind "reduced_model" (issue 4): reduced model vs references, errors and cost in one row.
+#include "experiments/kinds/reduced_model.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include "core/scenes/analytic.hpp"
+#include "core/averaging/averaging.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/base/errors.hpp"
+#include "core/reduced/meso_solver.hpp"
+#include "core/base/metrics.hpp"
+#include "core/closure/stress_quadrature.hpp"
+#include "experiments/runner/cell_config.hpp"
+#include "experiments/kinds/direct_reference.hpp"
+#include "experiments/runner/provenance.hpp"
+
+namespace closurelab {
+
+namespace {
+
+ParamSchema closure_schema() {
+  return {object_param("deconvolver", json{{"name", "landweber"}, {"order", 0}}, "registered deconvolver and its parameters"),
+          string_param("discretization", "coarse_coarse", "discretization of R_eta (par. 4.2)",
+                       {"coarse_coarse", "coarse_fine", "fine_fine"}),
+          number_param("noise_level", 0.0, "delta handed to the deconvolver's parameter rule", 0.0, {})};
+}
+
+ParamSchema meso_schema() {
+  return {number_param("kappa", 0.25, "time-step coefficient of (5.21)-(5.22)", 0.0, 1.0, true),
+          number_param("spacing_over_eta", 1.0, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0),
+          string_param("scheme", "paper", "paper: (5.11)-(5.14); staggered: conservative flux form", {"paper", "staggered"}),
+          string_param("mode", "steady", "steady or target_time", {"steady", "target_time"}),
+          number_param("target_time", 0.0, "model time in target_time mode", 0.0, {}),
+          number_param("steady_tolerance", 1e-5, "steady: max relative change over the window", 0.0, 1.0, true),
+          integer_param("steady_window", 1000, "steady: window in coarse steps", 1, {}),
+          number_param("max_time", 20.0, "give up after this model time", 0.0, {}, true),
+          bool_param("wall_constraint_forces", false,
+                     "add the averaged constraint forces holding the wall particles (DESIGN.md par. 6)")};
+}
+
+ParamSchema reference_schema() {
+  return {bool_param("direct_sph", true, "run the direct SPH of the same scene as a reference (and for the speed-up)"),
+          object_param("solver", json::object(), "direct SPH solver parameters (as in direct_sph_validation)"),
+          number_param("observe_spacing_over_eta", 0.25, "mesh spacing / eta' for the direct run's steady test", 0.01, 10.0)};
+}
+
+ParamSchema transient_schema() {
+  return {array_param("t_star", json::array(),
+                      "dimensionless snapshot times t* = t v_max / L (ascending; v_max: the analytic peak, L: the "
+                      "channel width, or L_y without walls); the steady state is always reported as well")};
+}
+
+// Direct SPH references (the final particle state and any snapshots) are shared by the cells of one process that use the same
+// scene, kernel and reference solver; each cell averages them at its own coarse nodes.
+struct CachedReference {
+  ParticleSystem particles;
+  json run;
+  std::vector<std::pair<double, ParticleSystem>> snapshots;
+};
+std::mutex cache_mutex;
+std::map<std::string, CachedReference> cache;
+
+class ReducedModel : public ExperimentKind {
+ public:
+  std::string name() const override { return "reduced_model"; }
+  std::string description() const override {
+    return "coarse solver with a deconvolution closure and a stress quadrature vs analytic, averaged analytic and "
+           "averaged direct SPH, with cost and speed-up";
+  }
+
+  json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
+    check_keys(cell, path, {"scene", "kernel", "closure", "quadrature", "solver", "reference", "transient"});
+    json out;
+    auto scene = build_scene(cell, path, reg, &out["scene"]);
+    if (!scene->analytic_vx) throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
+    auto kernel = build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
+    out["closure"] = resolve_section(cell, "closure", closure_schema(), path);
+    out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
+    out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
+    out["solver"] = resolve_section(cell, "solver", meso_schema(), path);
+    out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
+    out["reference"]["solver"] =
+        resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
+    out["transient"] = resolve_section(cell, "transient", transient_schema(), path);
+    double previous = 0.0;
+    for (std::size_t k = 0; k < out["transient"]["t_star"].size(); ++k) {
+      const json& t = out["transient"]["t_star"][k];
+      const std::string where = path + "/transient/t_star/" + std::to_string(k);
+      if (!t.is_number() || !std::isfinite(t.get<double>()) || t.get<double>() <= previous)
+        throw ConfigError(where, "snapshot times must be finite numbers, positive and ascending");
+      previous = t.get<double>();
+    }
+    // Cheap structural checks now (coarse mesh, quadrature fit) so that a bad cell fails before any runs.
+    auto deconv = reg.deconvolvers.create(out["closure"]["deconvolver"], path + "/closure/deconvolver");
+    auto quad = reg.quadratures.create(out["quadrature"], path + "/quadrature");
+    try {
+      MesoSolver probe(*scene, *kernel, *deconv, *quad, options(out));
+    } catch (const ConfigError& e) {
+      throw ConfigError(path + e.path(), e.message());
+    }
+    return out;
+  }
+
+  json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
+    const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
+    const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
+    auto deconv = reg.deconvolvers.create(cfg.at("closure").at("deconvolver"), "/closure/deconvolver");
+    auto quad = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
+    MesoSolverOptions opt = options(cfg);
+    opt.progress = progress;
+    opt.snapshot_times = snapshot_times(cfg, *scene);
+    std::vector<std::pair<double, Eigen::VectorXd>> reduced_snapshots;
+    opt.on_snapshot = [&](double t, const Eigen::VectorXd& v) { reduced_snapshots.emplace_back(t, v); };
+    const auto t_setup = std::chrono::steady_clock::now();
+    MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);  // operators, factorizations, quadrature tables
+    const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count();
+    const MesoResult reduced = solver.run();
+
+    json row;
+    row["status"] = (reduced.status == "converged" || reduced.status == "target_time") ? "ok" : reduced.status;
+    row["reduced_model"] = reduced.to_json();
+    const int nn = static_cast<int>(reduced.y.size());
+    const double l1 = scene->wall_lo, l2 = scene->wall_hi, eta = scene->eta, peak = scene->analytic_peak;
+    const bool walls = scene->has_walls;
+    Eigen::VectorXd analytic(nn), analytic_avg(nn);
+    std::vector<bool> interior(nn), band(nn), fluid(nn);
+    const double r = kernel->support_radius();
+    for (int n = 0; n < nn; ++n) {
+      const double y = reduced.y[n];
+      analytic[n] = scene->analytic_vx(y);
+      analytic_avg[n] = average_by_quadrature(scene->analytic_vx, [&](double t) { return kernel->factor(t); }, r, y,
+                                              walls ? l1 : y - r, walls ? l2 : y + r, scene->interfaces);
+      fluid[n] = !walls || (y > l1 + 1e-12 && y < l2 - 1e-12);  // wall nodes carry the imposed v̄ = 0
+      interior[n] = !walls || (y >= l1 + 3 * eta - 1e-12 && y <= l2 - 3 * eta + 1e-12);
+      band[n] = fluid[n] && !interior[n];
+    }
+    auto norms = [&](const Eigen::VectorXd& ref) {
+      return json{{"all", error_norms(reduced.v, ref, fluid, peak).to_json()},
+                  {"interior", error_norms(reduced.v, ref, interior, peak).to_json()},
+                  {"wall_band", error_norms(reduced.v, ref, band, peak).to_json()},
+                  {"peak_relative_difference", peak_relative_difference(reduced.v, ref)}};
+    };
+    json errors = {{"vs_analytic", norms(analytic)}, {"vs_averaged_analytic", norms(analytic_avg)}};
+    if (const auto& mode = scene->steady_sine_mode) {
+      // The steady sine amplitude against the true one, and the Landweber prediction e/(1 − (1 − e)^{n+1}) with
+      // e the kernel's symbol at the mode (for the Gaussian, exp(−k²η'²/4)).
+      double s = 0, norm = 0;
+      for (int n = 0; n < nn; ++n) {
+        s += reduced.v[n] * std::sin(mode->wavenumber * reduced.y[n]);
+        norm += std::pow(std::sin(mode->wavenumber * reduced.y[n]), 2);
+      }
+      const double e = kernel->factor_symbol(mode->wavenumber / (2 * M_PI));
+      errors["kolmogorov"] = {{"amplitude_ratio", s / norm / mode->amplitude}, {"e", e}};
+      const json& d = cfg.at("closure").at("deconvolver");
+      if (d.at("name") == "landweber" && d.at("rule") == "fixed")
+        errors["kolmogorov"]["landweber_prediction"] = e / (1 - std::pow(1 - e, d.at("order").get<int>() + 1));
+    }
+    json profile = {{"y", reduced.y}, {"reduced", reduced.v}, {"analytic", analytic}, {"analytic_average", analytic_avg}};
+    json cost = {{"wall_seconds", reduced.wall_seconds},
+                 {"setup_seconds", setup_seconds},
+                 {"steps", reduced.steps},
+                 {"dt", reduced.dt},
+                 {"model_time", reduced.time},
+                 {"deconvolution_seconds", reduced.deconvolution_seconds},
+                 {"deconvolution_matvecs", reduced.deconvolution_matvecs},
+                 {"quadrature_seconds", reduced.quadrature_seconds},
+                 {"pair_forces_per_step", reduced.quadrature_cost.evaluations > 0
+                                              ? static_cast<double>(reduced.quadrature_cost.pair_forces) /
+                                                    reduced.quadrature_cost.evaluations
+                                              : 0.0},
+                 {"bond_weights", reduced.quadrature_cost.bond_weights}};
+
+    if (cfg.at("reference").at("direct_sph").get<bool>()) {
+      const auto [averaged, run, direct_snapshots] = direct_reference(cfg, *scene, *kernel, reduced.y, progress);
+      errors["vs_averaged_direct_sph"] = norms(averaged);
+      profile["direct_average"] = averaged;
+      row["direct_sph"] = run;
+      // The transient: both runs at the same model times t = t* L / v_max.
+      json transient = json::array();
+      const json& t_star = cfg.at("transient").at("t_star");
+      for (std::size_t k = 0; k < t_star.size(); ++k) {
+        json snap = {{"t_star", t_star[k]}, {"time", opt.snapshot_times[k]}};
+        // A run that reached steady state before this time stays there: its final state stands in.
+        const bool reduced_has = k < reduced_snapshots.size() || reduced.status == "converged";
+        const bool direct_has = k < direct_snapshots.size() || run.at("status") == "converged";
+        if (reduced_has && direct_has) {
+          const Eigen::VectorXd& vr = k < reduced_snapshots.size() ? reduced_snapshots[k].second : reduced.v;
+          const Eigen::VectorXd& vd = k < direct_snapshots.size() ? direct_snapshots[k] : averaged;
+          if (k >= reduced_snapshots.size() || k >= direct_snapshots.size()) snap["steady_state_stands_in"] = true;
+          snap["vs_averaged_direct_sph"] = {{"all", error_norms(vr, vd, fluid, peak).to_json()},
+                                            {"peak_relative_difference", peak_relative_difference(vr, vd)}};
+          snap["reduced"] = vr;
+          snap["direct_average"] = vd;
+        } else {
+          snap["status"] = "not reached (a run ended before this time)";
+        }
+        transient.push_back(snap);
+      }
+      if (!t_star.empty()) row["transient"] = transient;
+      const double direct_seconds = run.at("wall_seconds").get<double>();
+      cost["direct_sph_wall_seconds"] = direct_seconds;
+      // Against the reduced model's whole cost, setup included (the direct run's setup is in its wall time).
+      const double total = setup_seconds + reduced.wall_seconds;
+      cost["speed_up"] = total > 0 ? direct_seconds / total : 0.0;
+    }
+    cost["peak_memory_mib"] = peak_memory_mib();
+    row["errors"] = errors;
+    row["cost"] = cost;
+    row["profile"] = profile;
+    return row;
+  }
+
+ private:
+  static MesoSolverOptions options(const json& cfg) {
+    const json& s = cfg.at("solver");
+    MesoSolverOptions o;
+    o.kappa = s.at("kappa").get<double>();
+    o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
+    o.scheme = s.at("scheme").get<std::string>();
+    o.discretization = parse_discretization(cfg.at("closure").at("discretization").get<std::string>(), "/closure/discretization");
+    o.noise_level = cfg.at("closure").at("noise_level").get<double>();
+    o.to_steady_state = s.at("mode") == "steady";
+    o.target_time = s.at("target_time").get<double>();
+    o.steady_tolerance = s.at("steady_tolerance").get<double>();
+    o.steady_window = s.at("steady_window").get<int>();
+    o.max_time = s.at("max_time").get<double>();
+    o.wall_constraint_forces = s.at("wall_constraint_forces").get<bool>();
+    return o;
+  }
+
+  static std::vector<double> snapshot_times(const json& cfg, const Scene& scene) {
+    const double length = scene.has_walls ? scene.wall_hi - scene.wall_lo : scene.box.ly;
+    std::vector<double> times;
+    for (const json& t : cfg.at("transient").at("t_star")) times.push_back(t.get<double>() * length / scene.analytic_peak);
+    return times;
+  }
+
+  // The averaged direct SPH velocity at `nodes` (final state and each snapshot) and the direct run's record.
+  static std::tuple<Eigen::VectorXd, json, std::vector<Eigen::VectorXd>> direct_reference(const json& cfg, const Scene& scene,
+                                                           const AveragingKernel& kernel, const Eigen::VectorXd& nodes,
+                                                           const ProgressFn& progress) {
+    const std::string key = cfg.at("scene").dump() + cfg.at("kernel").dump() + cfg.at("reference").dump() +
+                            cfg.at("transient").dump();
+    CachedReference c;
+    bool reused = false;
+    {
+      std::lock_guard<std::mutex> lock(cache_mutex);
+      auto it = cache.find(key);
+      if (it != cache.end()) c = it->second, reused = true;
+    }
+    if (!reused) {
+      SphRunOptions opt = sph_run_options_from(cfg.at("reference").at("solver"));
+      opt.progress = progress;
+      opt.snapshot_times = snapshot_times(cfg, scene);
+      opt.on_snapshot = [&c](double t, const ParticleSystem& p) { c.snapshots.emplace_back(t, p); };
+      const double spacing = cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene.eta;
+      DirectReference d = run_direct_reference(scene, kernel, opt, column_mesh(scene.box, spacing));
+      c.particles = std::move(d.particles);
+      c.run = d.run.to_json();
+      std::lock_guard<std::mutex> lock(cache_mutex);
+      cache[key] = c;
+    } else {
+      c.run["reused_from_an_earlier_cell"] = true;
+    }
+    UniformMesh1D axis{nodes[0], nodes.size() > 1 ? nodes[1] - nodes[0] : 1.0, static_cast<int>(nodes.size()),
+                       !scene.has_walls, scene.has_walls ? 0.0 : scene.box.ly};
+    const TensorMesh2D mesh{UniformMesh1D{0.0, scene.box.lx, 1, true, scene.box.lx}, axis};
+    std::vector<Eigen::VectorXd> snapshots;
+    for (const auto& [t, p] : c.snapshots) snapshots.push_back(average_particles(p, scene.box, kernel, mesh, AveragingRequest{}).vx);
+    return {average_particles(c.particles, scene.box, kernel, mesh, AveragingRequest{}).vx, c.run, snapshots};
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<ExperimentKind> make_reduced_model_experiment() { return std::make_unique<ReducedModel>(); }
+
+}  // namespace closurelab

@@ -1,0 +1,11 @@
+#pragma once
+#include <memory>
+
+#include "experiments/kinds/experiment_kind.hpp"
+
+namespace closurelab {
+// "reduced_model": the coarse solver with a deconvolution closure and a stress quadrature, against the
+// analytic solution, its average, and the averaged direct SPH of the same scene (run in the same process,
+// which gives the speed-up).
+std::unique_ptr<ExperimentKind> make_reduced_model_experiment();
+}  // namespace closurelab

@@ -62,7 +62,8 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
     // solution value is the particle velocity on the wall surface, zero by no slip. Used as data, the false
     // zero drives the reconstructed near-wall fluid backwards, the wall particles drag it forwards, and with
     // the wall constraint forces the loop diverges (measured for cc orders >= 1 and for cf).
-    data_ = UniformMesh1D{scene.wall_lo + w / k, w / k, k - 1, false, 0.0};
+    walls_are_data_ = opt_.balance == "force_density" && opt_.discretization != Discretization::coarse_coarse;
+    data_ = walls_are_data_ ? coarse_ : UniformMesh1D{scene.wall_lo + w / k, w / k, k - 1, false, 0.0};
     const int j_lo = static_cast<int>(std::floor(scene.wall_lo / scene.dx - 0.5)) + 1;
     int count = 0;
     while ((j_lo + count + 0.5) * scene.dx < scene.wall_hi) ++count;
@@ -93,7 +94,88 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
   rho_bar_ = f.rho;
   accel_force_ = f.fx.cwiseQuotient(f.rho);
   v_ = Eigen::VectorXd::Zero(coarse_.count);
-  if (opt_.wall_constraint_forces && scene.has_walls) build_constraint_map();
+  held_.assign(coarse_.count, false);
+  held_values_ = Eigen::VectorXd::Zero(coarse_.count);
+  if (!periodic_ && !walls_are_data_) held_.front() = held_.back() = true;  // (5.6)/(5.14)
+  if (opt_.balance != "stress_divergence" && opt_.balance != "force_density")
+    throw ConfigError("/solver/balance", "unknown balance '" + opt_.balance + "'; known: stress_divergence, force_density");
+  if (opt_.balance == "force_density") build_force_density_map();
+  if (opt_.wall_node_value != "imposed" && opt_.wall_node_value != "reconstructed")
+    throw ConfigError("/solver/wall_node_value", "unknown value '" + opt_.wall_node_value + "'; known: imposed, reconstructed");
+  if (opt_.wall_constraint_forces && scene.has_walls && opt_.balance != "force_density") build_constraint_map();
+}
+
+void MesoSolver::hold_nodes() {
+  for (int k = 0; k < coarse_.count; ++k)
+    if (held_[k]) v_[k] = held_values_[k];
+}
+
+void MesoSolver::set_oracles(MesoOracles oracles) {
+  const int n = coarse_.count;
+  if (oracles.boundary != "none" && oracles.boundary != "wall_nodes" && oracles.boundary != "wall_band")
+    throw ConfigError("/oracle/boundary", "unknown boundary oracle '" + oracles.boundary + "'; known: none, wall_nodes, wall_band");
+  if (oracles.boundary != "none" && periodic_)
+    throw ConfigError("/oracle/boundary", "the scene has no walls: there is no boundary to hold");
+  if ((oracles.closure || oracles.boundary != "none") && oracles.averaged.size() != n)
+    throw ConfigError("/oracle", "the averaged direct solution must be given at every coarse node");
+  if (oracles.boundary != "none") {
+    const double band = oracles.boundary == "wall_band" ? 3.0 * kernel_.eta() : 0.0;
+    for (int k = 0; k < n; ++k) {
+      const double y = coarse_.node(k);
+      if (y <= scene_.wall_lo + band - 1e-12 || y >= scene_.wall_hi - band + 1e-12 || k == 0 || k == n - 1) {
+        held_[k] = true;
+        held_values_[k] = oracles.averaged[k];
+      }
+    }
+  }
+  oracle_correction_.reset();
+  if (oracles.closure) {
+    const auto rows = oracles.row_y.size();
+    if (rows < 2 || oracles.row_velocity.size() != oracles.row_y.size())
+      throw ConfigError("/oracle/closure", "the direct solution's row velocities are missing");
+    const Eigen::VectorXd saved = v_;
+    v_ = oracles.averaged;
+    std::string issue;
+    if (!deconvolve(issue)) throw NumericalError("closure oracle: " + issue);
+    std::vector<Vec2> points;
+    for (Eigen::Index j = 0; j < oracles.row_y.size(); ++j) points.emplace_back(0.0, oracles.row_y[j]);
+    const Eigen::VectorXd at_rows = sample_reconstruction(points).row(0).transpose();
+    const double spacing = oracles.row_y[1] - oracles.row_y[0];
+    const UniformMesh1D row_axis{oracles.row_y[0], spacing, static_cast<int>(rows), periodic_, scene_.box.ly};
+    oracle_correction_.emplace(as_line(row_axis), 1, Eigen::VectorXd(oracles.row_velocity - at_rows));
+    v_ = saved;
+  }
+  oracles_ = std::move(oracles);
+  hold_nodes();
+}
+
+Eigen::VectorXd MesoSolver::reported_velocity() {
+  Eigen::VectorXd v = v_;
+  if (periodic_ || walls_are_data_ || opt_.wall_node_value == "imposed" || oracles_.boundary != "none") return v;
+  std::string issue;
+  if (!deconvolve(issue)) return v;
+  // v̄ at a wall-surface node as (2.9) of the lattice column: Σ_rows φ(y − y_j) V_j / Σ_rows φ(y − y_j), every
+  // lattice row in the sums (wall rows at rest).
+  const double r = kernel_.support_radius();
+  for (int k : {0, coarse_.count - 1}) {
+    const double y = coarse_.node(k);
+    std::vector<Vec2> points;
+    std::vector<double> weights;
+    double total = 0.0;
+    for (int j = static_cast<int>(std::floor((y - r) / scene_.dx)); j <= static_cast<int>(std::ceil((y + r) / scene_.dx)); ++j) {
+      const double yj = (j + 0.5) * scene_.dx;
+      if (yj < 0.0 || yj > scene_.box.ly) continue;
+      const double w = kernel_.factor(y - yj);
+      total += w;
+      points.emplace_back(0.0, yj);
+      weights.push_back(w);
+    }
+    const Eigen::Matrix2Xd vs = sample_reconstruction(points);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < points.size(); ++i) sum += weights[i] * vs(0, static_cast<Eigen::Index>(i));
+    v[k] = sum / total;
+  }
+  return v;
 }
 
 // F_c is affine in the fluid velocities (positions stay on the lattice, so the pressure part and the
@@ -149,6 +231,53 @@ void MesoSolver::build_constraint_map() {
   }
 }
 
+// Σ_{j fluid} ψ(node − q_j) f_j^x is affine in the fluid velocities for the same reason as F_c; probed one
+// fluid row at a time on the narrowest strip (per unit length, like ρ̄ and F̄).
+void MesoSolver::build_force_density_map() {
+  const Scene strip = scene_.narrowest_strip();
+  ParticleSystem lattice = strip.make_particles();
+  SphEngine engine(strip, lattice);
+  std::map<long, std::vector<std::int32_t>> rows;
+  std::vector<std::int32_t> fluid;
+  for (std::size_t a = 0; a < lattice.size(); ++a)
+    if (!lattice.fixed[a]) {
+      fluid.push_back(static_cast<std::int32_t>(a));
+      rows[std::lround(lattice.y[a] / scene_.dx - 0.5)].push_back(static_cast<std::int32_t>(a));
+    }
+  Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(coarse_.count, static_cast<Eigen::Index>(fluid.size()));
+  const double r = kernel_.support_radius();
+  for (std::size_t f = 0; f < fluid.size(); ++f) {
+    const int a = fluid[f];
+    double wx = 0.0;
+    for (int k = static_cast<int>(std::floor((-r - lattice.x[a]) / strip.box.lx));
+         k <= static_cast<int>(std::ceil((r - lattice.x[a]) / strip.box.lx)); ++k)
+      wx += kernel_.factor(lattice.x[a] + k * strip.box.lx);
+    for_nodes_within(coarse_, lattice.y[a], r, [&](int n, double d) {
+      weights(n, static_cast<Eigen::Index>(f)) += wx * kernel_.factor(d);
+    });
+  }
+  const auto density = [&]() {
+    std::vector<double> net(lattice.size(), 0.0);
+    for (const PairForce& p : engine.pair_forces()) {
+      net[p.j] += p.f.x();
+      net[p.k] -= p.f.x();
+    }
+    Eigen::VectorXd c(static_cast<Eigen::Index>(fluid.size()));
+    for (std::size_t f = 0; f < fluid.size(); ++f) c[static_cast<Eigen::Index>(f)] = net[fluid[f]];
+    return Eigen::VectorXd(weights * c);
+  };
+  force_offset_ = density();
+  force_map_ = Eigen::MatrixXd::Zero(coarse_.count, static_cast<Eigen::Index>(rows.size()));
+  Eigen::Index col = 0;
+  for (const auto& [row, ids] : rows) {
+    for (int a : ids) lattice.vx[a] = 1.0;
+    force_map_.col(col) = density() - force_offset_;
+    for (int a : ids) lattice.vx[a] = 0.0;
+    force_rows_.emplace_back(0.0, lattice.y[ids.front()]);
+    ++col;
+  }
+}
+
 Eigen::VectorXd MesoSolver::constraint_force() {
   const Eigen::Matrix2Xd v = sample_reconstruction(constraint_rows_);
   return constraint_offset_ + constraint_map_ * v.row(0).transpose();
@@ -164,7 +293,7 @@ Eigen::VectorXd MesoSolver::wall_constraint_force() {
 void MesoSolver::set_velocity(const Eigen::VectorXd& v) {
   if (v.size() != v_.size()) throw ConfigError("", "velocity has the wrong size");
   v_ = v;
-  if (!periodic_) v_[0] = v_[v_.size() - 1] = 0.0;
+  hold_nodes();
 }
 
 Eigen::Matrix2Xd MesoSolver::sample_reconstruction(const std::vector<Vec2>& points) {
@@ -172,14 +301,18 @@ Eigen::Matrix2Xd MesoSolver::sample_reconstruction(const std::vector<Vec2>& poin
   const Reconstruction rec(as_line(fine_solution ? fine_ : coarse_), 1, reconstruction_);
   Eigen::Matrix2Xd out = Eigen::Matrix2Xd::Zero(2, static_cast<Eigen::Index>(points.size()));
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (!scene_.is_wall(points[i].y())) out(0, static_cast<Eigen::Index>(i)) = rec.sample(Vec2(points[i].y(), 0.0));
+    if (!scene_.is_wall(points[i].y())) {
+      double v = rec.sample(Vec2(points[i].y(), 0.0));
+      if (oracle_correction_) v += oracle_correction_->sample(Vec2(points[i].y(), 0.0));
+      out(0, static_cast<Eigen::Index>(i)) = v;
+    }
   return out;
 }
 
-bool MesoSolver::close_stress(std::string& issue) {
+bool MesoSolver::deconvolve(std::string& issue) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
-  const bool walls_off = !periodic_ && opt_.discretization != Discretization::fine_fine;
+  const bool walls_off = !periodic_ && opt_.discretization != Discretization::fine_fine && !walls_are_data_;
   Eigen::VectorXd b = walls_off ? Eigen::VectorXd(v_.segment(1, v_.size() - 2)) : v_;
   if (opt_.discretization == Discretization::fine_fine) {
     std::vector<Vec2> pts;
@@ -194,15 +327,20 @@ bool MesoSolver::close_stress(std::string& issue) {
   } else {
     reconstruction_ = r.x;
   }
-  const auto t1 = clock::now();
-  deconv_seconds_ += std::chrono::duration<double>(t1 - t0).count();
+  deconv_seconds_ += std::chrono::duration<double>(clock::now() - t0).count();
   if (!reconstruction_.allFinite()) {
     issue = "deconvolution returned non-finite values (" + r.stats.message + ")";
     return false;
   }
+  return true;
+}
+
+bool MesoSolver::close_stress(std::string& issue) {
+  if (!deconvolve(issue)) return false;
+  const auto t1 = std::chrono::steady_clock::now();
   auto out = quadrature_.evaluate([this](const std::vector<Vec2>& p) { return sample_reconstruction(p); });
   t_ = out.at("xy");
-  quad_seconds_ += std::chrono::duration<double>(clock::now() - t1).count();
+  quad_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   if (!t_.allFinite()) {
     issue = "interaction stress is not finite";
     return false;
@@ -211,8 +349,22 @@ bool MesoSolver::close_stress(std::string& issue) {
 }
 
 bool MesoSolver::step(double dt, std::string& issue) {
-  if (!close_stress(issue)) return false;
   const int n = coarse_.count;
+  if (opt_.balance == "force_density") {
+    if (!deconvolve(issue)) return false;
+    const auto t1 = std::chrono::steady_clock::now();
+    const Eigen::VectorXd rows = sample_reconstruction(force_rows_).row(0).transpose();
+    const Eigen::VectorXd density = force_offset_ + force_map_ * rows;
+    quad_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    if (!density.allFinite()) {
+      issue = "force density is not finite";
+      return false;
+    }
+    for (int k = 0; k < n; ++k) v_[k] += dt * (density[k] / rho_bar_[k] + accel_force_[k]);
+    hold_nodes();
+    return true;
+  }
+  if (!close_stress(issue)) return false;
   const double h = coarse_.spacing;
   Eigen::VectorXd dtdy = Eigen::VectorXd::Zero(n);
   const auto wrap = [n](int k) { return (k % n + n) % n; };
@@ -235,7 +387,7 @@ bool MesoSolver::step(double dt, std::string& issue) {
   }
   if (constraint_map_.size() > 0) dtdy += constraint_force();
   for (int k = 0; k < n; ++k) v_[k] += dt * (dtdy[k] / rho_bar_[k] + accel_force_[k]);
-  if (!periodic_) v_[0] = v_[n - 1] = 0.0;  // (5.14)
+  hold_nodes();  // (5.14), or the boundary oracle
   return true;
 }
 
@@ -275,7 +427,7 @@ MesoResult MesoSolver::run() {
     res.dt = dt_full;
     res.time += dt;
     ++res.steps;
-    if (snapshots.due(res.time) && opt_.on_snapshot) opt_.on_snapshot(res.time, v_);
+    if (snapshots.due(res.time) && opt_.on_snapshot) opt_.on_snapshot(res.time, reported_velocity());
     if (res.steps % opt_.steady_window == 0) {
       const double mag = v_.cwiseAbs().maxCoeff();
       res.last_relative_change = mag > 0 ? (v_ - reference).cwiseAbs().maxCoeff() / mag : 0.0;
@@ -312,7 +464,7 @@ MesoResult MesoSolver::run() {
   }
   res.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
   res.y = coarse_.nodes();
-  res.v = v_;
+  res.v = reported_velocity();
   res.deconvolution_matvecs = matvecs_;
   res.deconvolution_seconds = deconv_seconds_;
   res.quadrature_seconds = quad_seconds_;

@@ -12,12 +12,14 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/averaging/averaging_kernel.hpp"
 #include "core/closure/deconvolver.hpp"
 #include "core/closure/forward_operator.hpp"
+#include "core/closure/reconstruction.hpp"
 #include "core/base/params.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_engine.hpp"
@@ -50,6 +52,32 @@ struct MesoSolverOptions {
   // particle i under the reconstructed velocities, is added to the coarse balance. Costs one pair-force
   // sweep of the lattice per row next to a wall at setup; per step, O(nodes × those rows).
   bool wall_constraint_forces = false;
+  // What the walled scenes report at the two wall-surface nodes: "imposed", the v̄ = 0 of (5.6); or
+  // "reconstructed", the average (2.9) of the closure's reconstruction there (fluid rows at the reconstructed
+  // velocity, wall particles at rest). An output only: the wall-surface nodes are not deconvolution data.
+  std::string wall_node_value = "imposed";
+  // The right-hand side of the balance: "stress_divergence", the paper's finite difference of the stress
+  // quadrature's T_int (plus the wall constraint forces when asked); or "force_density", the exact divergence
+  // of (2.13) with the constraint forces included: Σ_{j fluid} ψ(x − q_j) f_j, the averaged pair force (5.1) on
+  // the fluid particles under the reconstructed velocities, an affine map of the reconstruction on the fluid
+  // rows probed once (positions stay on the lattice). With it, the wall-surface nodes are evolved (and are
+  // deconvolution data) in the coarse–fine and fine–fine discretizations.
+  std::string balance = "stress_divergence";
+};
+
+// Oracle substitution (the error budget): ingredients of the reduced model replaced by their exact
+// counterparts taken from the direct SPH of the same scene. The quadrature oracle is the exact pair sum
+// (2.13), a quadrature like any other; the two here are the closure and the boundary values.
+struct MesoOracles {
+  // Closure oracle: the reconstruction becomes R(v̄) + (V_d − R(v̄_d)), with R the closure, V_d the direct
+  // SPH's particle velocity (x-mean per lattice row) and v̄_d its average at the coarse nodes: exact at the
+  // direct solution, and as responsive to v̄ as the closure itself (a fixed V_d would leave no steady state).
+  bool closure = false;
+  // Boundary oracle: "none"; "wall_nodes": the two wall-surface nodes held at v̄_d instead of (5.6);
+  // "wall_band": every node within 3η' of a wall surface held at v̄_d.
+  std::string boundary = "none";
+  Eigen::VectorXd averaged;             // v̄_d at the coarse nodes
+  Eigen::VectorXd row_y, row_velocity;  // the fluid lattice rows (ascending y) and V_d there
 };
 
 struct MesoResult {
@@ -79,16 +107,23 @@ class MesoSolver {
   // The averaged wall constraint forces at the coarse nodes for the current v̄ (deconvolves first); zero
   // when the option is off.
   Eigen::VectorXd wall_constraint_force();
-  // Sets v̄ (e.g. an initial state other than rest); wall nodes are forced to zero.
+  // Sets v̄ (e.g. an initial state other than rest); held nodes (the wall nodes, (5.6)) keep their values.
   void set_velocity(const Eigen::VectorXd& v);
+  // Switches oracles on (before run()); ConfigError when they do not fit the scene.
+  void set_oracles(MesoOracles oracles);
+  // v̄ as reported: the state, with the wall-surface nodes as options.wall_node_value says.
+  Eigen::VectorXd reported_velocity();
   // One step of size dt; returns false on a numerical issue (message in `issue`).
   bool step(double dt, std::string& issue);
   double time_step() const;
 
  private:
+  bool deconvolve(std::string& issue);    // v̄ → reconstruction_
   bool close_stress(std::string& issue);  // deconvolve + quadrature → t_
+  void hold_nodes();                      // held nodes back to their values
   Eigen::VectorXd constraint_force();     // F_c at the coarse nodes for the current reconstruction
   void build_constraint_map();
+  void build_force_density_map();
 
   const Scene& scene_;
   const AveragingKernel& kernel_;
@@ -103,6 +138,16 @@ class MesoSolver {
   Eigen::VectorXd constraint_offset_;
   Eigen::MatrixXd constraint_map_;
   std::vector<Vec2> constraint_rows_;  // one sample point (x = 0, y of the row) per column of the map
+  // The force density Σ_F ψ f_j at the coarse nodes as an affine map of the reconstruction on the fluid rows.
+  Eigen::VectorXd force_offset_;
+  Eigen::MatrixXd force_map_;
+  std::vector<Vec2> force_rows_;
+  bool walls_are_data_ = false;  // the wall-surface nodes evolve and are deconvolution data
+  // Nodes whose value is imposed, not evolved: the wall nodes (5.6) at zero, or oracle values.
+  std::vector<bool> held_;
+  Eigen::VectorXd held_values_;
+  MesoOracles oracles_;
+  std::optional<Reconstruction> oracle_correction_;  // V_d − R(v̄_d) on the fluid rows
   long matvecs_ = 0;
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
 };

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <tuple>
 
 #include "core/scenes/analytic.hpp"
@@ -39,7 +40,24 @@ ParamSchema meso_schema() {
           integer_param("steady_window", 1000, "steady: window in coarse steps", 1, {}),
           number_param("max_time", 20.0, "give up after this model time", 0.0, {}, true),
           bool_param("wall_constraint_forces", false,
-                     "add the averaged constraint forces holding the wall particles (DESIGN.md par. 6)")};
+                     "add the averaged constraint forces holding the wall particles (DESIGN.md par. 6)"),
+          string_param("wall_node_value", "imposed",
+                       "reported v at the wall-surface nodes: imposed (5.6) zero, or reconstructed (the average of the "
+                       "closure's reconstruction there; an output only)",
+                       {"imposed", "reconstructed"}),
+          string_param("balance", "stress_divergence",
+                       "right-hand side: stress_divergence (the paper: finite difference of the quadrature's T_int) or "
+                       "force_density (exact divergence of (2.13): the averaged pair forces on the fluid particles, "
+                       "wall constraint forces included; the quadrature is then unused)",
+                       {"stress_divergence", "force_density"})};
+}
+
+ParamSchema oracle_schema() {
+  return {bool_param("closure", false,
+                     "closure oracle: reconstruction R(v) + (V_d - R(v_d)) with V_d the direct SPH particle velocity"),
+          string_param("boundary", "none", "boundary oracle: hold the wall-surface nodes or the whole wall band at "
+                                           "the averaged direct SPH",
+                       {"none", "wall_nodes", "wall_band"})};
 }
 
 ParamSchema reference_schema() {
@@ -62,6 +80,13 @@ struct CachedReference {
   std::vector<std::pair<double, ParticleSystem>> snapshots;
 };
 std::mutex cache_mutex;
+
+struct DirectProfiles {
+  Eigen::VectorXd averaged;  // at the coarse nodes
+  json run;
+  std::vector<Eigen::VectorXd> snapshots;
+  Eigen::VectorXd row_y, row_velocity;
+};
 std::map<std::string, CachedReference> cache;
 
 class ReducedModel : public ExperimentKind {
@@ -73,7 +98,7 @@ class ReducedModel : public ExperimentKind {
   }
 
   json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
-    check_keys(cell, path, {"scene", "kernel", "closure", "quadrature", "solver", "reference", "transient"});
+    check_keys(cell, path, {"scene", "kernel", "closure", "quadrature", "solver", "reference", "transient", "oracle"});
     json out;
     auto scene = build_scene(cell, path, reg, &out["scene"]);
     if (!scene->analytic_vx) throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
@@ -86,6 +111,11 @@ class ReducedModel : public ExperimentKind {
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
     out["transient"] = resolve_section(cell, "transient", transient_schema(), path);
+    out["oracle"] = resolve_section(cell, "oracle", oracle_schema(), path);
+    if (uses_oracles(out) && !out["reference"]["direct_sph"].get<bool>())
+      throw ConfigError(path + "/oracle", "an oracle needs the direct SPH reference (reference.direct_sph = true)");
+    if (out["oracle"]["boundary"] != "none" && !scene->has_walls)
+      throw ConfigError(path + "/oracle/boundary", "scene '" + scene->name + "' has no walls");
     double previous = 0.0;
     for (std::size_t k = 0; k < out["transient"]["t_star"].size(); ++k) {
       const json& t = out["transient"]["t_star"][k];
@@ -118,6 +148,19 @@ class ReducedModel : public ExperimentKind {
     const auto t_setup = std::chrono::steady_clock::now();
     MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);  // operators, factorizations, quadrature tables
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count();
+    // The direct reference first: the oracles need it before the reduced run.
+    std::optional<DirectProfiles> direct;
+    if (cfg.at("reference").at("direct_sph").get<bool>())
+      direct = direct_reference(cfg, *scene, *kernel, solver.coarse_mesh().nodes(), progress);
+    if (uses_oracles(cfg)) {
+      MesoOracles o;
+      o.closure = cfg.at("oracle").at("closure").get<bool>();
+      o.boundary = cfg.at("oracle").at("boundary").get<std::string>();
+      o.averaged = direct->averaged;
+      o.row_y = direct->row_y;
+      o.row_velocity = direct->row_velocity;
+      solver.set_oracles(o);
+    }
     const MesoResult reduced = solver.run();
 
     json row;
@@ -127,7 +170,7 @@ class ReducedModel : public ExperimentKind {
     const double l1 = scene->wall_lo, l2 = scene->wall_hi, eta = scene->eta, peak = scene->analytic_peak;
     const bool walls = scene->has_walls;
     Eigen::VectorXd analytic(nn), analytic_avg(nn);
-    std::vector<bool> interior(nn), band(nn), fluid(nn);
+    std::vector<bool> interior(nn), band(nn), fluid(nn), every(nn, true);
     const double r = kernel->support_radius();
     for (int n = 0; n < nn; ++n) {
       const double y = reduced.y[n];
@@ -139,7 +182,8 @@ class ReducedModel : public ExperimentKind {
       band[n] = fluid[n] && !interior[n];
     }
     auto norms = [&](const Eigen::VectorXd& ref) {
-      return json{{"all", error_norms(reduced.v, ref, fluid, peak).to_json()},
+      return json{{"all_nodes", error_norms(reduced.v, ref, every, peak).to_json()},
+                  {"all", error_norms(reduced.v, ref, fluid, peak).to_json()},
                   {"interior", error_norms(reduced.v, ref, interior, peak).to_json()},
                   {"wall_band", error_norms(reduced.v, ref, band, peak).to_json()},
                   {"peak_relative_difference", peak_relative_difference(reduced.v, ref)}};
@@ -174,8 +218,8 @@ class ReducedModel : public ExperimentKind {
                                               : 0.0},
                  {"bond_weights", reduced.quadrature_cost.bond_weights}};
 
-    if (cfg.at("reference").at("direct_sph").get<bool>()) {
-      const auto [averaged, run, direct_snapshots] = direct_reference(cfg, *scene, *kernel, reduced.y, progress);
+    if (direct) {
+      const auto& [averaged, run, direct_snapshots, row_y, row_velocity] = *direct;
       errors["vs_averaged_direct_sph"] = norms(averaged);
       profile["direct_average"] = averaged;
       row["direct_sph"] = run;
@@ -191,7 +235,8 @@ class ReducedModel : public ExperimentKind {
           const Eigen::VectorXd& vr = k < reduced_snapshots.size() ? reduced_snapshots[k].second : reduced.v;
           const Eigen::VectorXd& vd = k < direct_snapshots.size() ? direct_snapshots[k] : averaged;
           if (k >= reduced_snapshots.size() || k >= direct_snapshots.size()) snap["steady_state_stands_in"] = true;
-          snap["vs_averaged_direct_sph"] = {{"all", error_norms(vr, vd, fluid, peak).to_json()},
+          snap["vs_averaged_direct_sph"] = {{"all_nodes", error_norms(vr, vd, every, peak).to_json()},
+                                            {"all", error_norms(vr, vd, fluid, peak).to_json()},
                                             {"peak_relative_difference", peak_relative_difference(vr, vd)}};
           snap["reduced"] = vr;
           snap["direct_average"] = vd;
@@ -215,6 +260,10 @@ class ReducedModel : public ExperimentKind {
   }
 
  private:
+  static bool uses_oracles(const json& cfg) {
+    return cfg.at("oracle").at("closure").get<bool>() || cfg.at("oracle").at("boundary") != "none";
+  }
+
   static MesoSolverOptions options(const json& cfg) {
     const json& s = cfg.at("solver");
     MesoSolverOptions o;
@@ -229,6 +278,8 @@ class ReducedModel : public ExperimentKind {
     o.steady_window = s.at("steady_window").get<int>();
     o.max_time = s.at("max_time").get<double>();
     o.wall_constraint_forces = s.at("wall_constraint_forces").get<bool>();
+    o.wall_node_value = s.at("wall_node_value").get<std::string>();
+    o.balance = s.at("balance").get<std::string>();
     return o;
   }
 
@@ -239,8 +290,9 @@ class ReducedModel : public ExperimentKind {
     return times;
   }
 
-  // The averaged direct SPH velocity at `nodes` (final state and each snapshot) and the direct run's record.
-  static std::tuple<Eigen::VectorXd, json, std::vector<Eigen::VectorXd>> direct_reference(const json& cfg, const Scene& scene,
+  // The averaged direct SPH velocity at `nodes` (final state and each snapshot), the direct run's record, and
+  // the final particle velocity as an x-mean per fluid lattice row.
+  static DirectProfiles direct_reference(const json& cfg, const Scene& scene,
                                                            const AveragingKernel& kernel, const Eigen::VectorXd& nodes,
                                                            const ProgressFn& progress) {
     const std::string key = cfg.at("scene").dump() + cfg.at("kernel").dump() + cfg.at("reference").dump() +
@@ -271,7 +323,20 @@ class ReducedModel : public ExperimentKind {
     const TensorMesh2D mesh{UniformMesh1D{0.0, scene.box.lx, 1, true, scene.box.lx}, axis};
     std::vector<Eigen::VectorXd> snapshots;
     for (const auto& [t, p] : c.snapshots) snapshots.push_back(average_particles(p, scene.box, kernel, mesh, AveragingRequest{}).vx);
-    return {average_particles(c.particles, scene.box, kernel, mesh, AveragingRequest{}).vx, c.run, snapshots};
+    std::map<long, std::pair<double, int>> rows;  // lattice row → (Σ v_x, count) over the fluid particles
+    for (std::size_t a = 0; a < c.particles.size(); ++a) {
+      if (c.particles.fixed[a]) continue;
+      auto& r = rows[std::lround(c.particles.y[a] / scene.dx - 0.5)];
+      r.first += c.particles.vx[a];
+      ++r.second;
+    }
+    Eigen::VectorXd row_y(static_cast<Eigen::Index>(rows.size())), row_v(static_cast<Eigen::Index>(rows.size()));
+    Eigen::Index i = 0;
+    for (const auto& [row, sum] : rows) {
+      row_y[i] = (row + 0.5) * scene.dx;
+      row_v[i++] = sum.first / sum.second;
+    }
+    return {average_particles(c.particles, scene.box, kernel, mesh, AveragingRequest{}).vx, c.run, snapshots, row_y, row_v};
   }
 };
 

@@ -63,6 +63,10 @@ struct MesoSolverOptions {
   // rows probed once (positions stay on the lattice). With it, the wall-surface nodes are evolved (and are
   // deconvolution data) in the coarse–fine and fine–fine discretizations.
   std::string balance = "stress_divergence";
+  // "explicit": forward Euler (5.11)–(5.14); "backward_euler": implicit in the whole rate, which is affine in v̄
+  // for a closure with fixed parameters (its Jacobian probed once, checked for affinity): stable for the stiff
+  // fluid–wall coupling of evolved wall-surface nodes, same steady state.
+  std::string time_integration = "explicit";
 };
 
 // Oracle substitution (the error budget): ingredients of the reduced model replaced by their exact
@@ -120,6 +124,8 @@ class MesoSolver {
  private:
   bool deconvolve(std::string& issue);    // v̄ → reconstruction_
   bool close_stress(std::string& issue);  // deconvolve + quadrature → t_
+  bool rate(Eigen::VectorXd& dvdt, std::string& issue);  // ∂_t v̄ at the current v̄
+  bool probe_jacobian(std::string& issue);
   void hold_nodes();                      // held nodes back to their values
   Eigen::VectorXd constraint_force();     // F_c at the coarse nodes for the current reconstruction
   void build_constraint_map();
@@ -142,7 +148,9 @@ class MesoSolver {
   Eigen::VectorXd force_offset_;
   Eigen::MatrixXd force_map_;
   std::vector<Vec2> force_rows_;
-  bool walls_are_data_ = false;  // the wall-surface nodes evolve and are deconvolution data
+  bool walls_are_data_ = false;
+  Eigen::MatrixXd jacobian_;  // backward Euler: ∂(rate)/∂v̄ and the rate at jacobian_base_
+  Eigen::VectorXd rate_offset_, jacobian_base_;  // the wall-surface nodes evolve and are deconvolution data
   // Nodes whose value is imposed, not evolved: the wall nodes (5.6) at zero, or oracle values.
   std::vector<bool> held_;
   Eigen::VectorXd held_values_;

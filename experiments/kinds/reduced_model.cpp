@@ -49,7 +49,11 @@ ParamSchema meso_schema() {
                        "right-hand side: stress_divergence (the paper: finite difference of the quadrature's T_int) or "
                        "force_density (exact divergence of (2.13): the averaged pair forces on the fluid particles, "
                        "wall constraint forces included; the quadrature is then unused)",
-                       {"stress_divergence", "force_density"})};
+                       {"stress_divergence", "force_density"}),
+          string_param("time_integration", "explicit",
+                       "explicit (forward Euler, the paper) or backward_euler (implicit; needs a closure with fixed "
+                       "parameters, whose rate is affine in v)",
+                       {"explicit", "backward_euler"})};
 }
 
 ParamSchema oracle_schema() {
@@ -280,6 +284,7 @@ class ReducedModel : public ExperimentKind {
     o.wall_constraint_forces = s.at("wall_constraint_forces").get<bool>();
     o.wall_node_value = s.at("wall_node_value").get<std::string>();
     o.balance = s.at("balance").get<std::string>();
+    o.time_integration = s.at("time_integration").get<std::string>();
     return o;
   }
 

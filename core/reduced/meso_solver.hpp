@@ -37,7 +37,7 @@ struct MesoSolverOptions {
   double target_time = 0.0;
   double steady_tolerance = 1e-5;      // max|Δv̄| / max|v̄| over the window (as the direct solver)
   int steady_window = 1000;
-  double max_time = 100.0;
+  double max_time = 20.0;
   // Divergence: stop (numerical_issue) when max|v̄| exceeds this multiple of the scene's analytic peak; an
   // unstable closure otherwise runs on with (5.21) shrinking the step without bound.
   double divergence_factor = 1e3;

@@ -103,14 +103,17 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
 }
 
 ParamSchema sph_solver_schema() {
+  const SphRunOptions d;  // the defaults
   return {
-      number_param("kappa", 0.25, "time-step coefficient kappa of (5.21)-(5.22)", 0.0, 1.0, true),
-      string_param("mode", "steady", "steady: run to steady state; target_time: run to target_time", {"steady", "target_time"}),
-      number_param("target_time", 0.0, "model time to reach in target_time mode", 0.0, {}),
-      number_param("steady_tolerance", 1e-5, "steady state: max relative change of v_x over the window", 0.0, 1.0, true),
-      integer_param("steady_window", 1000, "steady state: window in steps", 1, {}),
-      number_param("max_time", 100.0, "give up (no_convergence) after this model time", 0.0, {}, true),
-      integer_param("max_steps", 50000000, "give up after this many steps", 1, {}),
+      number_param("kappa", d.kappa, "time-step coefficient kappa of (5.21)-(5.22)", 0.0, 1.0, true),
+      string_param("mode", d.to_steady_state ? "steady" : "target_time",
+                   "steady: run to steady state; target_time: run to target_time", {"steady", "target_time"}),
+      number_param("target_time", d.target_time, "model time to reach in target_time mode", 0.0, {}),
+      number_param("steady_tolerance", d.steady_tolerance, "steady state: max relative change of v_x over the window",
+                   0.0, 1.0, true),
+      integer_param("steady_window", d.steady_window, "steady state: window in steps", 1, {}),
+      number_param("max_time", d.max_time, "give up (no_convergence) after this model time", 0.0, {}, true),
+      integer_param("max_steps", d.max_steps, "give up after this many steps", 1, {}),
   };
 }
 

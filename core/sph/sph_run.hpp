@@ -18,8 +18,8 @@ struct SphRunOptions {
   double target_time = 0.0;
   double steady_tolerance = 1e-5;  // max|v(t) − v(t − window)| / max|v(t)|
   int steady_window = 1000;       // steps
-  double max_time = 1e300;        // give up (status no_convergence) after this model time
-  std::int64_t max_steps = 100000000;
+  double max_time = 100.0;        // give up (status no_convergence) after this model time
+  std::int64_t max_steps = 50000000;
   double progress_seconds = 10.0;
   std::function<void(const std::string&)> progress;  // may be empty
   // The field whose change decides steady state; default: the x-velocities of the moving particles.
@@ -42,7 +42,8 @@ struct SphRunResult {
 
 SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& particles, const SphRunOptions& options);
 
-// The parameter schema of the direct solver as experiment specs name it ("solver": {...}).
+// The parameter schema of the direct solver as experiment specs name it ("solver": {...}); its defaults are
+// SphRunOptions{}'s (one source), and sph_run_options_from(resolved defaults) == SphRunOptions{} (tested).
 ParamSchema sph_solver_schema();
 SphRunOptions sph_run_options_from(const json& resolved_solver);
 

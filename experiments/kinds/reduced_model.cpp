@@ -30,32 +30,6 @@ ParamSchema closure_schema() {
           number_param("noise_level", 0.0, "delta handed to the deconvolver's parameter rule", 0.0, {})};
 }
 
-ParamSchema meso_schema() {
-  return {number_param("kappa", 0.25, "time-step coefficient of (5.21)-(5.22)", 0.0, 1.0, true),
-          number_param("spacing_over_eta", 1.0, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0),
-          string_param("scheme", "paper", "paper: (5.11)-(5.14); staggered: conservative flux form", {"paper", "staggered"}),
-          string_param("mode", "steady", "steady or target_time", {"steady", "target_time"}),
-          number_param("target_time", 0.0, "model time in target_time mode", 0.0, {}),
-          number_param("steady_tolerance", 1e-5, "steady: max relative change over the window", 0.0, 1.0, true),
-          integer_param("steady_window", 1000, "steady: window in coarse steps", 1, {}),
-          number_param("max_time", 20.0, "give up after this model time", 0.0, {}, true),
-          bool_param("wall_constraint_forces", false,
-                     "add the averaged constraint forces holding the wall particles (DESIGN.md par. 6)"),
-          string_param("wall_node_value", "imposed",
-                       "reported v at the wall-surface nodes: imposed (5.6) zero, or reconstructed (the average of the "
-                       "closure's reconstruction there; an output only)",
-                       {"imposed", "reconstructed"}),
-          string_param("balance", "stress_divergence",
-                       "right-hand side: stress_divergence (the paper: finite difference of the quadrature's T_int) or "
-                       "force_density (exact divergence of (2.13): the averaged pair forces on the fluid particles, "
-                       "wall constraint forces included; the quadrature is then unused)",
-                       {"stress_divergence", "force_density"}),
-          string_param("time_integration", "explicit",
-                       "explicit (forward Euler, the paper) or backward_euler (implicit; needs a closure with fixed "
-                       "parameters, whose rate is affine in v)",
-                       {"explicit", "backward_euler"})};
-}
-
 ParamSchema oracle_schema() {
   return {bool_param("closure", false,
                      "closure oracle: reconstruction R(v) + (V_d - R(v_d)) with V_d the direct SPH particle velocity"),
@@ -110,7 +84,7 @@ class ReducedModel : public ExperimentKind {
     out["closure"] = resolve_section(cell, "closure", closure_schema(), path);
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
     out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
-    out["solver"] = resolve_section(cell, "solver", meso_schema(), path);
+    out["solver"] = resolve_section(cell, "solver", meso_solver_schema(), path);
     out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
@@ -269,22 +243,9 @@ class ReducedModel : public ExperimentKind {
   }
 
   static MesoSolverOptions options(const json& cfg) {
-    const json& s = cfg.at("solver");
-    MesoSolverOptions o;
-    o.kappa = s.at("kappa").get<double>();
-    o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
-    o.scheme = s.at("scheme").get<std::string>();
+    MesoSolverOptions o = meso_options_from(cfg.at("solver"));
     o.discretization = parse_discretization(cfg.at("closure").at("discretization").get<std::string>(), "/closure/discretization");
     o.noise_level = cfg.at("closure").at("noise_level").get<double>();
-    o.to_steady_state = s.at("mode") == "steady";
-    o.target_time = s.at("target_time").get<double>();
-    o.steady_tolerance = s.at("steady_tolerance").get<double>();
-    o.steady_window = s.at("steady_window").get<int>();
-    o.max_time = s.at("max_time").get<double>();
-    o.wall_constraint_forces = s.at("wall_constraint_forces").get<bool>();
-    o.wall_node_value = s.at("wall_node_value").get<std::string>();
-    o.balance = s.at("balance").get<std::string>();
-    o.time_integration = s.at("time_integration").get<std::string>();
     return o;
   }
 
@@ -346,6 +307,51 @@ class ReducedModel : public ExperimentKind {
 };
 
 }  // namespace
+
+// Defaults are MesoSolverOptions{}'s (one source; options(resolved defaults) == MesoSolverOptions{}, tested).
+ParamSchema meso_solver_schema() {
+  const MesoSolverOptions d;
+  return {number_param("kappa", d.kappa, "time-step coefficient of (5.21)-(5.22)", 0.0, 1.0, true),
+          number_param("spacing_over_eta", d.spacing_over_eta, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0),
+          string_param("scheme", d.scheme, "paper: (5.11)-(5.14); staggered: conservative flux form", {"paper", "staggered"}),
+          string_param("mode", d.to_steady_state ? "steady" : "target_time", "steady or target_time", {"steady", "target_time"}),
+          number_param("target_time", d.target_time, "model time in target_time mode", 0.0, {}),
+          number_param("steady_tolerance", d.steady_tolerance, "steady: max relative change over the window", 0.0, 1.0, true),
+          integer_param("steady_window", d.steady_window, "steady: window in coarse steps", 1, {}),
+          number_param("max_time", d.max_time, "give up after this model time", 0.0, {}, true),
+          bool_param("wall_constraint_forces", d.wall_constraint_forces,
+                     "add the averaged constraint forces holding the wall particles (DESIGN.md par. 6)"),
+          string_param("wall_node_value", d.wall_node_value,
+                       "reported v at the wall-surface nodes: imposed (5.6) zero, or reconstructed (the average of the "
+                       "closure's reconstruction there; an output only)",
+                       {"imposed", "reconstructed"}),
+          string_param("balance", d.balance,
+                       "right-hand side: stress_divergence (the paper: finite difference of the quadrature's T_int) or "
+                       "force_density (exact divergence of (2.13): the averaged pair forces on the fluid particles, "
+                       "wall constraint forces included; the quadrature is then unused)",
+                       {"stress_divergence", "force_density"}),
+          string_param("time_integration", d.time_integration,
+                       "explicit (forward Euler, the paper) or backward_euler (implicit; needs a closure with fixed "
+                       "parameters, whose rate is affine in v)",
+                       {"explicit", "backward_euler"})};
+}
+
+MesoSolverOptions meso_options_from(const json& s) {
+  MesoSolverOptions o;
+  o.kappa = s.at("kappa").get<double>();
+  o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
+  o.scheme = s.at("scheme").get<std::string>();
+  o.to_steady_state = s.at("mode") == "steady";
+  o.target_time = s.at("target_time").get<double>();
+  o.steady_tolerance = s.at("steady_tolerance").get<double>();
+  o.steady_window = s.at("steady_window").get<int>();
+  o.max_time = s.at("max_time").get<double>();
+  o.wall_constraint_forces = s.at("wall_constraint_forces").get<bool>();
+  o.wall_node_value = s.at("wall_node_value").get<std::string>();
+  o.balance = s.at("balance").get<std::string>();
+  o.time_integration = s.at("time_integration").get<std::string>();
+  return o;
+}
 
 std::unique_ptr<ExperimentKind> make_reduced_model_experiment() { return std::make_unique<ReducedModel>(); }
 

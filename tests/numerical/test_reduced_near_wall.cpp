@@ -1,0 +1,72 @@
+// The reduced model near walls, judged as DESIGN.md §6 says: max over every coarse node (the wall-surface
+// nodes included) against the averaged direct SPH of the same scene. Oracle substitution (the error budget)
+// and the force-density balance with evolved wall-surface nodes.
+#include <gtest/gtest.h>
+
+#include "core/base/registry.hpp"
+#include "experiments/kinds/experiment_kind.hpp"
+
+using namespace closurelab;
+
+namespace {
+
+// One reduced_model cell on poiseuille-uniform at n_y = 48 (the direct reference is shared by the cells of
+// this process, so it runs once per η').
+json run_cell(const json& changes, double eta = 1.0 / 16) {
+  const Registry& reg = builtin_registry();
+  json cell = {{"scene", {{"name", "poiseuille-uniform"}, {"n_y", 48}, {"n_x", 12}, {"eta_over_ly", eta}}},
+               {"closure", {{"deconvolver", {{"name", "landweber"}, {"order", 0}}}, {"discretization", "coarse_coarse"}}},
+               {"quadrature", {{"name", "coarse"}, {"stride_x", 0}, {"stride_y", 4}}},
+               {"solver", {{"mode", "steady"}, {"scheme", "staggered"}, {"wall_constraint_forces", true}, {"max_time", 5.0}}},
+               {"reference", {{"direct_sph", true}, {"solver", {{"mode", "steady"}, {"max_time", 10}}}}}};
+  cell.merge_patch(changes);
+  if (changes.contains("closure") && changes["closure"].contains("deconvolver"))
+    cell["closure"]["deconvolver"] = changes["closure"]["deconvolver"];  // replaced, not merged
+  if (changes.contains("quadrature")) cell["quadrature"] = changes["quadrature"];
+  const ExperimentKind& kind = find_experiment_kind("reduced_model", "");
+  const json cfg = kind.resolve(cell, "", reg);
+  return kind.run(cfg, reg, [](const std::string&) {});
+}
+
+double all_nodes_error(const json& row) {
+  return row.at("errors").at("vs_averaged_direct_sph").at("all_nodes").at("max_rel").get<double>();
+}
+
+const json kForceDensity = {{"solver", {{"balance", "force_density"}, {"wall_node_value", "reconstructed"}}}};
+const json kTikhonovCf = {{"closure", {{"deconvolver", {{"name", "tikhonov"}, {"alpha", 1e-6}}}, {"discretization", "coarse_fine"}}},
+                          {"solver", {{"balance", "force_density"}, {"time_integration", "backward_euler"}}}};
+
+}  // namespace
+
+TEST(ReducedNearWall, WithEveryOracleTheSteadyStateIsTheAveragedDirectSph) {
+  // The force-density balance is the exact averaged balance (2.11) (the divergence of (2.13) taken exactly, the
+  // wall constraint forces included); with the closure oracle the reconstruction is exact at the direct
+  // solution, so what remains is the convective stress and the direct run's own unsteadiness (steady
+  // tolerance 1e-5 per 1000 steps): measured 0.08 % (cc) and 0.06 % (cf) of the peak. 0.3 % bounds them.
+  json oracle = kForceDensity;
+  oracle["oracle"] = {{"closure", true}};
+  const json cc = run_cell(oracle);
+  ASSERT_EQ(cc.at("status"), "ok");
+  EXPECT_LT(all_nodes_error(cc), 3e-3);
+  json cf = kTikhonovCf;
+  cf["oracle"] = {{"closure", true}};
+  const json rf = run_cell(cf);
+  ASSERT_EQ(rf.at("status"), "ok");
+  EXPECT_LT(all_nodes_error(rf), 3e-3);
+  // The paper's finite-difference divergence of the stress at spacing η' is not exact: the same oracle leaves
+  // an error well above the balance's (2.1 % measured with the exact quadrature and the wall nodes held).
+  json fd = {{"quadrature", {{"name", "exact"}}}, {"oracle", {{"closure", true}, {"boundary", "wall_nodes"}}}};
+  EXPECT_GT(all_nodes_error(run_cell(fd)), 1e-2);
+}
+
+TEST(ReducedNearWall, EvolvedWallNodesRemoveTheImposedWallValueFloor) {
+  // (5.6) puts 0 where the true average is ~14 % of the peak at n_y = 48 (the floor of every closure); the
+  // near-wall formulation (every node evolved by the force-density balance, coarse–fine Tikhonov with the wall
+  // rows known, backward Euler) measured 0.29 %.
+  const json paper = run_cell(json::object());
+  ASSERT_EQ(paper.at("status"), "ok");
+  EXPECT_GT(all_nodes_error(paper), 0.10);
+  const json evolved = run_cell(kTikhonovCf);
+  ASSERT_EQ(evolved.at("status"), "ok");
+  EXPECT_LT(all_nodes_error(evolved), 0.01);
+}

@@ -58,6 +58,10 @@ class ForwardOperator {
   // The meshes, when the operator was built from a kernel (used by Reconstruction and difference operators).
   std::optional<TensorMesh2D> data_mesh, solution_mesh;
   int dimension = 0;  // 1 or 2 when built from meshes, 0 otherwise
+  // 1D solution meshes whose values beyond both ends are known zeros (a channel's wall rows): optional weights
+  // of the n + 1 links, the two end links to the known zeros included (e.g. the viscosity at each link, for
+  // a minimum-viscous-dissipation prior); used by difference regularizers that include the end links.
+  std::optional<Eigen::VectorXd> link_weights;
 
  private:
   OperatorStorage storage_ = OperatorStorage::dense;

@@ -1,6 +1,7 @@
 #include "core/reduced/meso_solver.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -75,6 +76,18 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
   if (opt_.scheme != "paper" && opt_.scheme != "staggered")
     throw ConfigError("/solver/scheme", "unknown scheme '" + opt_.scheme + "'; known: paper, staggered");
   op_ = make_averaging_operator_1d(kernel, data_, fine_, opt_.discretization);
+  if (!periodic_ && opt_.discretization != Discretization::coarse_coarse) {
+    // The fluid rows' links, the two to the wall rows (at rest) included, weighted by the viscosity there
+    // (harmonic mean across a phase interface), relative to the largest: the viscous-dissipation prior.
+    const int rows = fine_.count;
+    Eigen::VectorXd w(rows + 1);
+    const auto mu = [&](int j) { return scene.viscosity_at(Vec2(0.0, fine_.node(std::clamp(j, 0, rows - 1)))); };
+    for (int i = 0; i <= rows; ++i) {
+      const double a = mu(i - 1), b = mu(i);
+      w[i] = 2.0 * a * b / (a + b) / scene.max_viscosity();
+    }
+    op_.link_weights = w;
+  }
   try {
     deconvolver_.setup(op_);
   } catch (const ConfigError& e) {

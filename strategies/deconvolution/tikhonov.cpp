@@ -38,12 +38,39 @@ SpMat difference_1d(int n, int order) {
   return d;
 }
 
-// C = LᵀL (C = I for the identity).
+// The first difference with the two end links to known zeros beyond the solution mesh ((n + 1) x n), each
+// link weighted by √w (w from the operator's link_weights, else 1): ‖Lx‖² = Σ_links w (x_{a+1} − x_a)², the
+// discrete (viscous) Dirichlet energy. 1D solution meshes only.
+SpMat zero_end_difference(const ForwardOperator& a) {
+  const int n = static_cast<int>(a.cols());
+  if (a.dimension == 2) throw ConfigError("/regularizer", "first_difference_zero_ends needs a 1D solution mesh");
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(n + 1);
+  if (a.link_weights) {
+    if (a.link_weights->size() != n + 1 || (a.link_weights->array() <= 0).any() || !a.link_weights->allFinite())
+      throw ConfigError("/regularizer", "the operator's link weights must be n + 1 positive numbers");
+    w = *a.link_weights;
+  }
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i <= n; ++i) {
+    const double s = std::sqrt(w[i]);
+    if (i < n) t.emplace_back(i, i, s);
+    if (i > 0) t.emplace_back(i, i - 1, -s);
+  }
+  SpMat l(n + 1, n);
+  l.setFromTriplets(t.begin(), t.end());
+  return l;
+}
+
+// C = LᵀL (C = I for the identity; order 3: the zero-end, weighted first difference above).
 SpMat regularizer_matrix(const ForwardOperator& a, int order) {
   const int n = static_cast<int>(a.cols());
   SpMat identity(n, n);
   identity.setIdentity();
   if (order == 0) return identity;
+  if (order == 3) {
+    const SpMat l = zero_end_difference(a);
+    return SpMat(l.transpose() * l);
+  }
   int nx = n, ny = 1;
   if (a.dimension == 2 && a.solution_mesh) {
     nx = a.solution_mesh->nx();
@@ -258,8 +285,11 @@ class Tikhonov : public DeconvolverBase {
 ParamSchema tikhonov_schema() {
   return {string_param("form", "least_squares", "paper: (A + alpha C)x = b (4.7); least_squares: (A'A + alpha C)x = A'b",
                        {"paper", "least_squares"}),
-          string_param("regularizer", "identity", "C = I, or C = L'L for a first/second difference L",
-                       {"identity", "first_difference", "second_difference"}),
+          string_param("regularizer", "identity",
+                       "C = I, or C = L'L for a first/second difference L; first_difference_zero_ends: L includes the "
+                       "links to known zeros beyond both ends, weighted by the operator's link weights (a channel's "
+                       "viscosity: the minimum-viscous-dissipation prior)",
+                       {"identity", "first_difference", "second_difference", "first_difference_zero_ends"}),
           number_param("alpha", 1e-6, "regularization parameter alpha (rule fixed)", 0.0, {}, true),
           string_param("backend", "auto", "auto, spectral (C = I; SVD/eigen, Kronecker-aware), dense (Eigen), sparse (CHOLMOD)",
                        {"auto", "spectral", "dense", "sparse"}),
@@ -277,7 +307,10 @@ std::unique_ptr<Deconvolver> make_tikhonov(const json& p) {
                        : be == "sparse" ? Tikhonov::Backend::sparse
                                         : Tikhonov::Backend::automatic;
   return std::make_unique<Tikhonov>(RuleConfig::from_json(p), p.at("form").get<std::string>() == "paper",
-                                    reg == "identity" ? 0 : reg == "first_difference" ? 1 : 2,
+                                    reg == "identity"           ? 0
+                                    : reg == "first_difference" ? 1
+                                    : reg == "second_difference" ? 2
+                                                                 : 3,
                                     p.at("alpha").get<double>(), backend, p.at("alpha_max").get<double>(),
                                     p.at("alpha_min").get<double>(), p.at("alpha_count").get<int>());
 }

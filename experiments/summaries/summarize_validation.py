@@ -45,7 +45,7 @@ def main(path):
     for (name, walls), pts in sorted(groups.items()):
         pts.sort()
         for (n0, e0), (n1, e1) in zip(pts, pts[1:]):
-            order = math.log(e0 / e1) / math.log(n1 / n0) if e0 > 0 and e1 > 0 else float("nan")
+            order = math.log(e0 / e1) / math.log(n1 / n0) if e0 > 0 and e1 > 0 and n1 != n0 else float("nan")
             print(f"| {name} | {walls} | {n0} -> {n1} | {order:.2f} |")
 
 

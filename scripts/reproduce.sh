@@ -19,7 +19,7 @@ mode=quick
 case "${1:-}" in
   --full) mode=full; shift ;;
   --summaries) mode=summaries; shift ;;
-  --help|-h) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  --help|-h) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   "") ;;
   *) echo "reproduce: unknown argument '$1'; valid: --full [closurelab run options], --summaries, --help" >&2; exit 2 ;;
 esac

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Regenerates every committed summary (the lines of committed_summaries.txt) from the committed tables into a
 temporary folder and compares each Markdown file byte for byte with the committed one (figures are not
-compared: their bytes depend on the matplotlib version). Run from the repository root; exit 1 on a difference.
+compared: their bytes depend on the matplotlib version), and the index results/README.md with results_index.py's
+output. Run from the repository root; exit 1 on a difference.
 
 Usage: python3 experiments/summaries/check_summaries.py
 """
@@ -39,6 +40,11 @@ def main():
                     failures.append(f"{committed}: not committed")
                 elif open(committed, "rb").read() != new:
                     failures.append(f"{committed}: differs from its regeneration")
+    index = subprocess.run([sys.executable, os.path.join(HERE, "results_index.py")], capture_output=True)
+    checked += 1
+    if index.returncode != 0 or not os.path.exists("results/README.md") or \
+            open("results/README.md", "rb").read() != index.stdout:
+        failures.append("results/README.md: differs from results_index.py's output")
     for msg in failures:
         print("check_summaries: " + msg, file=sys.stderr)
     print(f"check_summaries: {checked} summaries compared, {len(failures)} problem(s)")

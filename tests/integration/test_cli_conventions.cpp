@@ -3,6 +3,8 @@
 // shows each kind's parameters like the other families.
 #include <gtest/gtest.h>
 
+#include <cctype>
+
 #include "tests/integration/cli_run.hpp"
 
 using namespace closurelab::testing;
@@ -61,7 +63,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadInvocation{"run", {"SPEC.json"}},
         BadInvocation{"deconvolve --frob", {"--frob", "--matrix", "--rhs", "--method", "--help"}},
         BadInvocation{"deconvolve", {"--matrix", "usage: closurelab deconvolve"}},
-        BadInvocation{"deconvolve --matrix", {"--matrix", "missing value"}}));
+        BadInvocation{"deconvolve --matrix", {"--matrix", "missing value"}}),
+    [](const ::testing::TestParamInfo<BadInvocation>& info) {
+      std::string name = std::to_string(info.index) + "_";
+      for (const char* c = info.param.args; *c; ++c) name += std::isalnum(static_cast<unsigned char>(*c)) ? *c : '_';
+      return name;
+    });
 
 TEST(CliConventions, ListExperimentShowsEachKindsParameters) {
   const auto work = fresh_work_folder("cli_list");

@@ -1,43 +1,90 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds, and runs the paper reproduction as far as it exists:
-#   results/sph_validation/   the direct SPH reference (issue 2), ~25 min on one core
-#   results/stability/        the deconvolution hard-case suite (issue 3), seconds
-#   results/paper/            the reduced model: Figs. 2-4, the kolmogorov diagnostic, App. B and C, the
-#                             speed-up against the full 192 x 192 direct SPH (issue 4), ~40 min
-#   results/speed_vs_error/   every deconvolution strategy as the closure, per scene (issue 4), ~5 min
-#   results/two_phase/        the layered two-phase flow: direct SPH, reduced model, eta' sweep (issue 5), ~40 min
-# Finished cells are kept and skipped on a re-run (an interrupted run resumes); pass --force to recompute.
+# The main job. Installs what is missing (apt), builds the closurelab executable, then:
+#
+#   scripts/reproduce.sh          the quick run: computes from scratch (no cached cell reused) the headline
+#                                 matrix of experiments/quick/ into out/quick/ (git-ignored): the direct SPH
+#                                 reference of a channel (n_y = 96) and of the kolmogorov scene (n_y = 64), the
+#                                 reduced model with six closures on each, the speed-against-error front and the
+#                                 profiles as figures; prints one line per cell with the time left, and ends with
+#                                 the headline (best closure's error, its speed-up, the reference's own error).
+#                                 Measured: see the README ("The two commands").
+#   scripts/reproduce.sh --full   regenerates the committed paper set in results/ (hours from scratch; finished
+#                                 cells are kept and skipped, so an interrupted run resumes; add --force to
+#                                 recompute), then every summary and the index results/README.md.
+#   scripts/reproduce.sh --summaries   only the summaries and the index, from the committed tables.
+# Extra arguments after --full go to `closurelab run` (e.g. --jobs 2, --force).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install_deps.sh --figures
-scripts/build.sh
-run() { build/experiments/closurelab run "$1" --out "$2" "${@:3}"; }
+mode=quick
+case "${1:-}" in
+  --full) mode=full; shift ;;
+  --summaries) mode=summaries; shift ;;
+  --help|-h) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  "") ;;
+  *) echo "reproduce: unknown argument '$1'; valid: --full [closurelab run options], --summaries, --help" >&2; exit 2 ;;
+esac
+# Idle OpenMP threads sleep instead of spinning: on a loaded machine spinning threads made runs 10-20x slower.
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-PASSIVE}"
 PY=/usr/bin/python3; [ -x "$PY" ] || PY=python3   # Debian's python3 has python3-matplotlib for the figures
+SUMMARIZE=("$PY" experiments/summaries/summarize.py)
+if [ "$mode" != summaries ]; then
+  scripts/install_deps.sh --figures
+  launcher=()
+  command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
+  cmake --build build -j "$(nproc)" --target closurelab
+fi
+run() { build/experiments/closurelab run "$1" --out "$2" "${@:3}"; }
 
-run experiments/sph_validation.json results/sph_validation "$@"
-python3 experiments/summaries/summarize_validation.py results/sph_validation/sph_validation.json > results/sph_validation/summary.md
+if [ "$mode" = quick ]; then
+  out=out/quick
+  rm -rf "$out"   # from scratch: no cached cell is reused
+  start=$(date +%s)
+  tables=()
+  for spec in experiments/quick/*.json; do
+    name=$(basename "$spec" .json)
+    run "$spec" "$out/$name"
+    tables+=("$out/$name/$name.json")
+    "${SUMMARIZE[@]}" --view front "$out/$name/$name.json" "$out/$name"
+    "${SUMMARIZE[@]}" --view profiles "$out/$name/$name.json" "$out/$name"
+  done
+  echo
+  echo "reproduce: quick run done in $(( $(date +%s) - start )) s (computing and summaries; the build not counted)"
+  echo "reproduce: summary $out/summary.md; per scene: $out/<scene>/front.md and profiles.md (figures .png"\
+       "where python3-matplotlib is installed); tables $out/<scene>/<scene>.json"
+  echo "reproduce: headline (errors relative to the analytic peak):"
+  "${SUMMARIZE[@]}" --headline "$out" "${tables[@]}"
+  exit 0
+fi
 
-for s in square coarse_fine rules; do run "experiments/stability/$s.json" results/stability "$@"; done
-python3 experiments/summaries/summarize_stability.py results/stability/stability_{square,coarse_fine,rules}.json > results/stability/SUMMARY.md
+if [ "$mode" = full ]; then
+  # Each line: a spec and its output folder (results/<group>/<name>/).
+  while read -r spec dir; do
+    run "$spec" "$dir" "$@"
+  done <<'LIST'
+experiments/sph_validation.json results/sph_validation
+experiments/stability/square.json results/stability
+experiments/stability/coarse_fine.json results/stability
+experiments/stability/rules.json results/stability
+experiments/paper/appendix_c.json results/paper/appendix_c
+experiments/paper/appendix_b.json results/paper/appendix_b
+experiments/paper/fig2.json results/paper/fig2
+experiments/paper/fig3.json results/paper/fig3
+experiments/paper/fig4.json results/paper/fig4
+experiments/paper/kolmogorov.json results/paper/kolmogorov
+experiments/paper/speed_up.json results/paper/speed_up
+experiments/speed_vs_error/poiseuille_uniform.json results/speed_vs_error/poiseuille_uniform
+experiments/speed_vs_error/poiseuille_periodic.json results/speed_vs_error/poiseuille_periodic
+experiments/speed_vs_error/kolmogorov.json results/speed_vs_error/kolmogorov
+experiments/paper/two_phase_direct.json results/two_phase/direct
+experiments/paper/two_phase.json results/two_phase/two_phase
+experiments/paper/two_phase_eta.json results/two_phase/two_phase_eta
+LIST
+fi
 
-run experiments/paper/appendix_c.json results/paper/appendix_c "$@"
-python3 experiments/summaries/summarize_appendix_c.py results/paper/appendix_c/appendix_c.json > results/paper/appendix_c/summary.md
-run experiments/paper/appendix_b.json results/paper/appendix_b "$@"
-python3 experiments/summaries/summarize_appendix_b.py results/paper/appendix_b/appendix_b.json > results/paper/appendix_b/summary.md
-for f in fig2 fig3 fig4 kolmogorov speed_up; do
-  run "experiments/paper/$f.json" "results/paper/$f" "$@"
-  "$PY" experiments/summaries/summarize_reduced_model.py "results/paper/$f/$f.json" "results/paper/$f/summary"
-done
-
-for s in poiseuille_uniform poiseuille_periodic kolmogorov; do
-  run "experiments/speed_vs_error/$s.json" "results/speed_vs_error/$s" "$@"
-  "$PY" experiments/summaries/summarize_pareto.py "results/speed_vs_error/$s/pareto_$s.json" "results/speed_vs_error/$s/summary"
-done
-
-run experiments/paper/two_phase_direct.json results/two_phase/direct "$@"
-python3 experiments/summaries/summarize_two_phase.py results/two_phase/direct/two_phase_direct.json > results/two_phase/direct/summary.md
-run experiments/paper/two_phase.json results/two_phase/two_phase "$@"
-run experiments/paper/two_phase_eta.json results/two_phase/two_phase_eta "$@"
-"$PY" experiments/summaries/summarize_two_phase_reduced.py results/two_phase/two_phase/two_phase.json \
-  results/two_phase/two_phase_eta/two_phase_eta.json results/two_phase/reduced
-echo "reproduce: results written under results/"
+# Every summary, one tool: each line is the tables of one summary (and its folder where it is not theirs).
+while read -r -a args; do
+  "${SUMMARIZE[@]}" "${args[@]}"
+done < experiments/summaries/committed_summaries.txt
+"$PY" experiments/summaries/results_index.py > results/README.md
+echo "reproduce: results and summaries under results/; index results/README.md"

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/base/run_progress.hpp"
 #include "core/base/snapshot_schedule.hpp"
 #include "core/sph/sph_engine.hpp"
 
@@ -48,6 +49,7 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
   };
   res.status = "no_convergence";
   SnapshotSchedule snapshots(opt.snapshot_times);
+  RunProgress estimate(opt.to_steady_state, opt.target_time, opt.max_time, opt.steady_tolerance);
   while (res.steps < opt.max_steps) {
     const double dt_full = engine.time_step(opt.kappa);  // reported; snapshots and the target time may shorten a step
     double dt = snapshots.clamp(res.time, dt_full);
@@ -79,12 +81,14 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
         break;
       }
       const auto now = clock::now();
+      const ProgressEstimate done =
+          estimate.update(res.time, res.last_relative_change, std::chrono::duration<double>(now - t0).count());
       if (opt.progress && std::chrono::duration<double>(now - last_report).count() >= opt.progress_seconds) {
         last_report = now;
         std::ostringstream os;
         os << "direct SPH: step " << res.steps << ", t = " << res.time << ", dt = " << dt_full
            << ", max|v| = " << engine.max_speed() << ", change over " << opt.steady_window
-           << " steps = " << res.last_relative_change;
+           << " steps = " << res.last_relative_change << "; " << RunProgress::describe(done);
         opt.progress(os.str());
       }
     }

@@ -15,6 +15,15 @@ namespace closurelab {
 // Progress lines go to stderr; experiment kinds call this on long runs.
 using ProgressFn = std::function<void(const std::string& line)>;
 
+// One top-level key of a cell: a registered strategy or scene (`family` names it; its parameters are listed by
+// `closurelab list FAMILY`), or a section with its own parameter schema.
+struct KindSection {
+  std::string key;
+  std::string description;
+  std::string family;  // "scene", "kernel", "deconvolver", "quadrature", or empty for a schema section
+  ParamSchema params;
+};
+
 class ExperimentKind {
  public:
   virtual ~ExperimentKind() = default;
@@ -23,6 +32,8 @@ class ExperimentKind {
   // Validates one cell (the merged JSON object, found at JSON `path`) and returns it with every default
   // filled in. Throws ConfigError naming the JSON path of anything wrong. Must not run anything costly.
   virtual json resolve(const json& cell, const std::string& path, const Registry& registry) const = 0;
+  // The keys a cell may hold, for `closurelab list experiment`.
+  virtual std::vector<KindSection> sections() const = 0;
   // Runs a resolved cell. Returns a row object with at least "errors" and "cost" objects and a "status"
   // string ("ok", "no_convergence", "numerical_issue"); the runner adds the resolved parameters.
   virtual json run(const json& resolved, const Registry& registry, const ProgressFn& progress) const = 0;

@@ -65,6 +65,13 @@ class QuadratureConvergence : public ExperimentKind {
     return "error and cost of a stress quadrature (coarse (5.27)) against the exact pair sum (2.13), App. C";
   }
 
+  std::vector<KindSection> sections() const override {
+    return {{"scene", "an x-invariant scene (required)", "scene", {}},
+            {"kernel", "the averaging kernel; its eta must equal the scene's", "kernel", {}},
+            {"quadrature", "the stress quadrature under test (required)", "quadrature", {}},
+            {"evaluation", "the closure field and the column mesh", "", evaluation_schema()}};
+  }
+
   json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
     check_keys(cell, path, {"scene", "kernel", "quadrature", "evaluation"});
     json out;

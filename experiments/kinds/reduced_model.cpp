@@ -75,6 +75,16 @@ class ReducedModel : public ExperimentKind {
            "averaged direct SPH, with cost and speed-up";
   }
 
+  std::vector<KindSection> sections() const override {
+    return {{"scene", "the scene (required)", "scene", {}},
+            {"kernel", "the averaging kernel; its eta must equal the scene's", "kernel", {}},
+            {"closure", "the deconvolution closure", "", closure_schema()},
+            {"quadrature", "the stress quadrature (default exact)", "quadrature", {}},
+            {"solver", "the coarse solver", "", meso_schema()},
+            {"reference", "the direct SPH reference", "", reference_schema()},
+            {"transient", "snapshots of both solvers", "", transient_schema()}};
+  }
+
   json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
     check_keys(cell, path, {"scene", "kernel", "closure", "quadrature", "solver", "reference", "transient", "oracle"});
     json out;

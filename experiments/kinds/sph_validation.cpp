@@ -123,6 +123,13 @@ class SphValidation : public ExperimentKind {
     return "direct SPH of a scene to steady state, averaged, compared with the analytic solution and its average";
   }
 
+  std::vector<KindSection> sections() const override {
+    return {{"scene", "the scene (required)", "scene", {}},
+            {"kernel", "the averaging kernel; its eta must equal the scene's", "kernel", {}},
+            {"solver", "the direct SPH solver", "", sph_solver_schema()},
+            {"averaging", "the averaging mesh", "", averaging_schema()}};
+  }
+
   json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
     check_keys(cell, path, {"scene", "kernel", "solver", "averaging"});
     json out;

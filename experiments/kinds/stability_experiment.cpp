@@ -19,11 +19,24 @@ namespace {
 
 const std::vector<std::string> problem_names = {"gaussian_averaging", "shaw", "deriv2", "phillips"};
 
+ParamSchema run_schema() {
+  return {number_param("noise", 0.0, "relative noise ||e||/||b||", 0.0, 10.0),
+          integer_param("seed", 12345, "noise RNG seed (std::mt19937_64)", 0),
+          bool_param("scan_best", true, "scan the family for the best parameter")};
+}
+
 class StabilityExperiment : public ExperimentKind {
  public:
   std::string name() const override { return "deconvolution_stability"; }
   std::string description() const override {
     return "deconvolution hard cases: rule error vs best scanned parameter, kappa(A), finiteness, cost";
+  }
+
+  std::vector<KindSection> sections() const override {
+    return {{"problem", "the test problem (required): name one of gaussian_averaging, shaw, deriv2, phillips", "",
+             ill_posed_problem_schema()},
+            {"method", "the deconvolver (required)", "deconvolver", {}},
+            {"noise, seed, scan_best", "top-level keys of the cell", "", run_schema()}};
   }
 
   json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
@@ -46,10 +59,7 @@ class StabilityExperiment : public ExperimentKind {
     const json rest = resolve_params(json{{"noise", cell.value("noise", json(0.0))},
                                           {"seed", cell.value("seed", json(12345))},
                                           {"scan_best", cell.value("scan_best", json(true))}},
-                                     {number_param("noise", 0.0, "relative noise ||e||/||b||", 0.0, 10.0),
-                                      integer_param("seed", 12345, "noise RNG seed (std::mt19937_64)", 0),
-                                      bool_param("scan_best", true, "scan the family for the best parameter")},
-                                     path);
+                                     run_schema(), path);
     out["noise"] = rest["noise"];
     out["seed"] = rest["seed"];
     out["scan_best"] = rest["scan_best"];

@@ -65,7 +65,7 @@ Options parse(int argc, char** argv) {
       }
       o.params[k] = parsed;
     } else {
-      throw ConfigError(a, "unknown option");
+      throw ConfigError(a, "unknown option; valid: --matrix, --rhs, --x-true, --method, --param, --noise-level, --out, --help");
     }
   }
   if (o.matrix.empty()) throw ConfigError("--matrix", "required");
@@ -77,6 +77,17 @@ Options parse(int argc, char** argv) {
 }  // namespace
 
 int run_deconvolve_command(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::cout << usage_text << "  methods: " << builtin_registry().deconvolvers.known_names()
+                << " (parameters: closurelab list deconvolver)\n";
+      return 0;
+    }
+    if (a == "--matrix" || a == "--rhs" || a == "--x-true" || a == "--method" || a == "--out" || a == "--param" ||
+        a == "--noise-level")
+      ++i;  // skip the option's value
+  }
   try {
     const Options o = parse(argc, argv);
     json config = o.params;

@@ -17,16 +17,61 @@ using namespace closurelab;
 
 namespace {
 
+const char* const families = "kernel, deconvolver, quadrature, scene, experiment";
+
 void usage(std::ostream& os) {
   os << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n"
      << "usage:\n"
-     << "  closurelab list [family]                        families: kernel, deconvolver, quadrature, scene, experiment\n"
+     << "  closurelab list [FAMILY]                        families: " << families << "\n"
      << "  closurelab run SPEC.json [--out DIR] [--jobs N] [--force]\n"
      << "  closurelab deconvolve --matrix A.mtx --rhs b.mtx [--x-true x.mtx] --method NAME [--param k=v ...]\n"
-     << "                        [--noise-level d] [--out x.mtx]\n";
+     << "                        [--noise-level d] [--out x.mtx]\n"
+     << "  closurelab COMMAND --help                       the usage of one command\n";
+}
+
+const char* const run_usage =
+    "usage: closurelab run SPEC.json [--out DIR] [--jobs N] [--force]\n"
+    "  Expands the experiment matrix of SPEC.json, validates every cell before running any, runs them and writes\n"
+    "  DIR/cells/<id>.json per cell and the table DIR/<name>.json. A finished cell is not run again.\n"
+    "  --out DIR   output folder (default: results); locked while the run writes\n"
+    "  --jobs N    cells run at once (default 1); the OpenMP threads are shared among them\n"
+    "  --force     recompute finished cells\n"
+    "  --help      this text\n"
+    "  Exit codes: 0 all cells ran, 1 a cell failed or a write failed, 2 bad input or the folder is in use.\n";
+
+const char* const list_usage =
+    "usage: closurelab list [FAMILY]\n"
+    "  Prints the registered strategies with their parameters (name, type, default, range: meaning).\n";
+
+bool wants_help(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i)
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) return true;
+  return false;
+}
+
+void print_params(const ParamSchema& params, const std::string& indent) {
+  for (const auto& p : params) {
+    std::cout << indent << p.name << " (" << to_string(p.type)
+              << (p.default_value.is_null() ? ", required" : ", default " + p.default_value.dump()) << ")";
+    if (p.min) std::cout << " " << (p.exclusive_min ? ">" : ">=") << " " << *p.min;
+    if (p.max) std::cout << " <= " << *p.max;
+    if (!p.choices.empty()) {
+      std::cout << " one of";
+      for (const auto& c : p.choices) std::cout << " " << c;
+    }
+    std::cout << ": " << p.description << "\n";
+  }
 }
 
 int list_command(int argc, char** argv) {
+  if (wants_help(argc, argv)) {
+    std::cout << list_usage << "  families: " << families << "\n";
+    return 0;
+  }
+  if (argc > 3) {
+    std::cerr << "error: list takes at most one FAMILY, got '" << argv[3] << "'\n" << list_usage;
+    return 2;
+  }
   const Registry& reg = builtin_registry();
   const std::string want = argc > 2 ? argv[2] : "";
   bool any = false;
@@ -36,32 +81,34 @@ int list_command(int argc, char** argv) {
     std::cout << fam->family_name() << ":\n";
     for (const auto& e : fam->entries()) {
       std::cout << "  " << e.name << " - " << e.description << "\n";
-      for (const auto& p : e.params) {
-        std::cout << "      " << p.name << " (" << to_string(p.type)
-                  << (p.default_value.is_null() ? ", required" : ", default " + p.default_value.dump()) << ")";
-        if (p.min) std::cout << " " << (p.exclusive_min ? ">" : ">=") << " " << *p.min;
-        if (p.max) std::cout << " <= " << *p.max;
-        if (!p.choices.empty()) {
-          std::cout << " one of";
-          for (const auto& c : p.choices) std::cout << " " << c;
-        }
-        std::cout << ": " << p.description << "\n";
-      }
+      print_params(e.params, "      ");
     }
   }
   if (want.empty() || want == "experiment") {
     any = true;
     std::cout << "experiment:\n";
-    for (const auto& k : experiment_kinds()) std::cout << "  " << k->name() << " - " << k->description() << "\n";
+    for (const auto& k : experiment_kinds()) {
+      std::cout << "  " << k->name() << " - " << k->description() << "\n";
+      for (const auto& s : k->sections()) {
+        std::cout << "      " << s.key << ": " << s.description;
+        if (!s.family.empty()) std::cout << " (parameters: closurelab list " << s.family << ")";
+        std::cout << "\n";
+        print_params(s.params, "          ");
+      }
+    }
   }
   if (!any) {
-    std::cerr << "error: unknown family '" << want << "'; known: kernel, deconvolver, quadrature, scene, experiment\n";
+    std::cerr << "error: unknown family '" << want << "'; known: " << families << "\n";
     return 2;
   }
   return 0;
 }
 
 int run_command(int argc, char** argv) {
+  if (wants_help(argc, argv)) {
+    std::cout << run_usage;
+    return 0;
+  }
   RunOptions opt;
   std::string spec_file;
   for (int i = 0; i < argc; ++i) opt.command_line.append(i ? " " : "").append(argv[i]);
@@ -73,18 +120,20 @@ int run_command(int argc, char** argv) {
     };
     if (a == "--out") {
       opt.out_dir = need("a folder");
+      if (opt.out_dir.empty()) throw ConfigError("", "--out needs a folder name, got ''");
     } else if (a == "--jobs") {
       const std::string v = need("a positive integer");
+      std::size_t used = 0;
       try {
-        opt.jobs = std::stoi(v);
+        opt.jobs = std::stoi(v, &used);
       } catch (...) {
         opt.jobs = 0;
       }
-      if (opt.jobs < 1) throw ConfigError("", "--jobs needs a positive integer, got '" + v + "'");
+      if (opt.jobs < 1 || used != v.size()) throw ConfigError("", "--jobs needs a positive integer, got '" + v + "'");
     } else if (a == "--force") {
       opt.force = true;
     } else if (!a.empty() && a[0] == '-') {
-      throw ConfigError("", "unknown option '" + a + "'");
+      throw ConfigError("", "unknown option '" + a + "'; valid: --out, --jobs, --force, --help");
     } else if (spec_file.empty()) {
       spec_file = a;
     } else {
@@ -117,7 +166,7 @@ int main(int argc, char** argv) {
       std::cout << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n";
       return 0;
     }
-    std::cerr << "error: unknown command '" << cmd << "'\n";
+    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, deconvolve, --help, --version\n";
     usage(std::cerr);
     return 2;
   } catch (const ConfigError& e) {

@@ -13,11 +13,11 @@ exponent is the App. B test.
 import json
 import sys
 
-from summary_util import slope
+from summary_util import slope, load_table, dirty_mark
 
 
 def main(path):
-    table = json.load(open(path))
+    table = load_table(path)
     prov = table["provenance"]
     print(f"# {table['experiment']}: the convective stress shrinks like eta'^2 (Appendix B)\n")
     print(f"{table['description']}\n")
@@ -39,12 +39,12 @@ def main(path):
             shear = rho * g / mu * (centre - y)
             vals.append(-t / (rho * shear ** 2 / 2))
         if not vals:
-            print(f"| {eta:.4g} | {c['steps']} | 0 (no interior node off the centre: the channel is {width:.3g} wide) ||||")
+            print(f"| {eta:.4g}{dirty_mark(r)} | {c['steps']} | 0 (no interior node off the centre: the channel is {width:.3g} wide) ||||")
             continue
         vals.sort()
         s = vals[len(vals) // 2]
         scaled.append((eta, s))
-        print(f"| {eta:.4g} | {c['steps']} | {len(vals)} | {e['convective_xx_interior_max']:.4g} | "
+        print(f"| {eta:.4g}{dirty_mark(r)} | {c['steps']} | {len(vals)} | {e['convective_xx_interior_max']:.4g} | "
               f"{e['convective_xx_appendix_b_interior_max']:.4g} | {e['convective_xx_vs_appendix_b_max_abs']:.3g} | {s / eta ** 2:.4f} |")
     for r in table["rows"]:
         if r.get("status") != "ok":

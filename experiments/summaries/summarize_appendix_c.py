@@ -10,11 +10,11 @@ import json
 import math
 import sys
 
-from summary_util import fmt, slope
+from summary_util import fmt, slope, load_table, dirty_mark
 
 
 def main(path):
-    table = json.load(open(path))
+    table = load_table(path)
     prov = table["provenance"]
     print(f"# {table['experiment']}: coarse stress quadrature against the exact pair sum (Appendix C)\n")
     print(f"{table['description']}\n")
@@ -41,7 +41,7 @@ def main(path):
         grid = "x-integrated column" if sx == 0 else f"2D, n_x = {p['scene']['n_x']}"
         err = e["channel"]["max_rel"]
         wb = p["quadrature"]["wall_band"]
-        print(f"| {p['evaluation']['velocity']} | {wb} | {grid} | {'-' if sx == 0 else sx} x {sy} | {fmt(d.get('coarse_spacing_over_eta'))} | "
+        print(f"| {p['evaluation']['velocity']}{dirty_mark(r)} | {wb} | {grid} | {'-' if sx == 0 else sx} x {sy} | {fmt(d.get('coarse_spacing_over_eta'))} | "
               f"{fmt(d.get('coarsening_paper_equivalent'))} | {fmt(d.get('coarsening_strip'))} | {fmt(err)} | "
               f"{fmt(e['interior']['max_rel'])} | {fmt(e['wall_band']['max_rel'])} | {fmt(e['inside_walls']['max_rel'])} | "
               f"{fmt(1e3 * c['exact_evaluate_seconds_min'])} | {fmt(1e3 * c['quadrature_evaluate_seconds_min'])} | "

@@ -12,7 +12,7 @@ one shared core, so ratios are meaningful within one table only.
 import json
 import sys
 
-from summary_util import fmt
+from summary_util import fmt, load_table
 
 
 def error_of(row, ref, subset):
@@ -28,7 +28,7 @@ def total_seconds(row):
 
 
 def main(path, prefix, key=None):
-    table = json.load(open(path))
+    table = load_table(path)
     prov = table["provenance"]
     rows = table["rows"]
     if key is None:

@@ -7,11 +7,11 @@ writes OUT_PREFIX.md and OUT_PREFIX.png. Every number is read from the table.
 import json
 import sys
 
-from summary_util import fmt, get
+from summary_util import fmt, get, load_table
 
 
 def main(path, prefix):
-    table = json.load(open(path))
+    table = load_table(path)
     prov = table["provenance"]
     lines = [f"# {table['experiment']}\n", f"{table['description']}\n",
              f"From `{path}`; commit `{prov['git_commit']}`, {prov['compiler']}, {prov['build_type']}, "

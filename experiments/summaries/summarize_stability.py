@@ -9,6 +9,8 @@ cases with noise where the method ran (status not numerical_issue), and the dete
 """
 import json
 import sys
+
+from summary_util import load_table
 from collections import defaultdict
 
 
@@ -27,7 +29,7 @@ rows = []
 rule_rows = []
 prov = None
 for f in sys.argv[1:]:
-    t = json.load(open(f))
+    t = load_table(f)
     prov = t["provenance"]
     # Tables whose cells all use the discrepancy principle form the headline; others (GCV, L-curve) go below.
     for r in t["rows"]:

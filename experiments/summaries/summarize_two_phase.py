@@ -8,11 +8,11 @@ Every number printed is read from the table.
 import json
 import sys
 
-from summary_util import fmt
+from summary_util import fmt, load_table, dirty_mark
 
 
 def main(path):
-    table = json.load(open(path))
+    table = load_table(path)
     prov = table["provenance"]
     print(f"# {table['experiment']}: direct SPH of the layered two-phase channel (par. 7)\n")
     print(f"{table['description']}\n")
@@ -40,7 +40,7 @@ def main(path):
         d = i.get("density_deviation_near_interfaces", {})
         drho = f"{fmt(d.get('min'))} / {fmt(d.get('max'))}" if d else "-"
         vdw = vdw or i.get("van_der_waals")
-        print(f"| {p['case']} | {p['pair_viscosity_mean']} | {r['status']} | {fmt(g('all'))} | {fmt(g('all', 'l2_rel'))} | "
+        print(f"| {p['case']}{dirty_mark(r)} | {p['pair_viscosity_mean']} | {r['status']} | {fmt(g('all'))} | {fmt(g('all', 'l2_rel'))} | "
               f"{fmt(g('interior'))} | {fmt(g('wall_band'))} | {fmt(g('near_interfaces'))} | "
               f"{fmt(g('away_from_interfaces'))} | {fmt(ai)} | {fmt(e.get('peak_relative_difference'))} | "
               f"{fmt(i.get('max_y_displacement_dx'))} | {fmt(i.get('particles_outside_phase_region'))} | {drho} | "

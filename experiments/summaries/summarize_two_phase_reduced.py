@@ -11,7 +11,7 @@ import json
 import os
 import sys
 
-from summary_util import fmt, get
+from summary_util import fmt, get, load_table
 
 PAPER = {"case1": 0.10, "case2": 0.06, "case3": 0.02}  # par. 7, second-order closure, peak-velocity metric
 PAPER_CLOSURE = "landweber n=2 (paper)"
@@ -45,7 +45,7 @@ def main(args):
     out = args[-1]
     main_path = args[0]
     eta_path = args[1] if len(args) > 2 else None
-    table = json.load(open(main_path))
+    table = load_table(main_path)
     rows = [r for r in table["rows"]]
     cases = sorted({r["params"]["scene"]["case"] for r in rows})
     L = ["# Two-phase layered flow: the reduced model against direct SPH (paper par. 7)\n",
@@ -96,7 +96,7 @@ def main(args):
                 L.append(f"| {fmt(s['t_star'])} | {fmt(s['time'])} | {fmt(get(s, 'vs_averaged_direct_sph', 'all', 'max_rel'))} | "
                          f"{pct(get(s, 'vs_averaged_direct_sph', 'peak_relative_difference'))} | {fmt(max(s['direct_average'])) if 'direct_average' in s else '-'} |")
     if eta_path and os.path.exists(eta_path):
-        eta_table = json.load(open(eta_path))
+        eta_table = load_table(eta_path)
         L += ["\n## Does the error fall as eta' shrinks?\n", "From " + provenance_line(eta_path, eta_table) +
               " The eta'/L = 1/16 rows are from the main table above.\n",
               "| case | closure | eta'/L | peak vs direct | max vs direct | peak vs analytic | max vs analytic | reduced s | direct s |",

@@ -8,11 +8,11 @@ import json
 import math
 import sys
 
-from summary_util import fmt
+from summary_util import fmt, load_table, dirty_mark
 
 
 def main(path):
-    table = json.load(open(path))
+    table = load_table(path)
     prov = table["provenance"]
     print(f"# {table['experiment']}: direct SPH validation\n")
     print(f"{table['description']}\n")
@@ -34,7 +34,7 @@ def main(path):
         pa = e.get("particles_vs_analytic", {}).get("all", {}).get("max_rel")
         ai = e.get("averaged_vs_averaged_analytic", {}).get("interior", {}).get("max_rel")
         ab = e.get("averaged_vs_averaged_analytic", {}).get("wall_band", {}).get("max_rel")
-        print(f"| {p['name']} | {p['n_y']} | {p['wall_model']} | {r['status']} | {fmt(c.get('steps'))} | {fmt(c.get('dt'))} | "
+        print(f"| {p['name']}{dirty_mark(r)} | {p['n_y']} | {p['wall_model']} | {r['status']} | {fmt(c.get('steps'))} | {fmt(c.get('dt'))} | "
               f"{fmt(c.get('wall_seconds'))} | {fmt(c.get('particle_steps_per_second'))} | {fmt(pa)} | {fmt(ai)} | {fmt(ab)} | "
               f"{fmt(wo.get('shift_in_spacings'))} | {fmt(wo.get('centre_overprediction'))} | {fmt(wo.get('expected_2dx_over_w'))} |")
         if pa is not None:
@@ -45,7 +45,7 @@ def main(path):
     for (name, walls), pts in sorted(groups.items()):
         pts.sort()
         for (n0, e0), (n1, e1) in zip(pts, pts[1:]):
-            order = math.log(e0 / e1) / math.log(n1 / n0) if e0 > 0 and e1 > 0 else float("nan")
+            order = math.log(e0 / e1) / math.log(n1 / n0) if e0 > 0 and e1 > 0 and n1 != n0 else float("nan")
             print(f"| {name} | {walls} | {n0} -> {n1} | {order:.2f} |")
 
 

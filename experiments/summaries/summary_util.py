@@ -1,4 +1,5 @@
 """Helpers shared by the summarize_*.py scripts (imported from the scripts' own folder)."""
+import json
 import math
 
 
@@ -28,3 +29,48 @@ def slope(points):
     mx = sum(p[0] for p in pts) / len(pts)
     my = sum(p[1] for p in pts) / len(pts)
     return sum((p[0] - mx) * (p[1] - my) for p in pts) / sum((p[0] - mx) ** 2 for p in pts)
+
+
+def _joined(values):
+    return ", ".join(str(v) for v in values) if values else "unknown"
+
+
+def load_table(path):
+    """A table as the views read it. A table whose provenance is derived from its rows (the runner's format since
+    rows record their own provenance) gets the display fields the views print: the commits its rows came from,
+    marked when rows came from a dirty build, the compilers, build types, thread counts, the span of dates and the
+    commands; a row computed by a dirty build has " [dirty build]" appended to its label. Older tables, whose
+    header held the provenance of one run, are returned as they are (so their summaries regenerate unchanged)."""
+    with open(path) as f:
+        table = json.load(f)
+    prov = table.get("provenance", {})
+    if prov.get("derived_from") != "rows":
+        return table
+    rows = table.get("rows", [])
+    row_prov = [r.get("provenance") for r in rows if isinstance(r.get("provenance"), dict)]
+    commits = _joined(prov.get("commits", []))
+    notes = []
+    if prov.get("dirty_rows"):
+        notes.append(f"{prov['dirty_rows']} row(s) from a dirty build")
+    if prov.get("rows_without_provenance"):
+        notes.append(f"{prov['rows_without_provenance']} row(s) without provenance")
+    first, last = prov.get("first_date_utc", ""), prov.get("last_date_utc", "")
+    table["provenance"] = {
+        "git_commit": commits + (f" ({'; '.join(notes)})" if notes else ""),
+        "compiler": _joined(prov.get("compilers", [])),
+        "build_type": _joined(prov.get("build_types", [])),
+        "threads": _joined(sorted({p.get("threads") for p in row_prov if p.get("threads") is not None})),
+        "date_utc": first if first == last else f"{first} to {last}",
+        "command": "; ".join(sorted({p.get("command", "") for p in row_prov})) or "unknown",
+        "host": _joined(prov.get("hosts", [])),
+    }
+    for r in rows:
+        if isinstance(r.get("provenance"), dict) and r["provenance"].get("dirty"):
+            r["label"] = r.get("label", "") + " [dirty build]"
+    return table
+
+
+def dirty_mark(row):
+    """" [dirty build]" for a row computed by a build with uncommitted changes (for views that print no label)."""
+    p = row.get("provenance")
+    return " [dirty build]" if isinstance(p, dict) and p.get("dirty") else ""

@@ -69,8 +69,9 @@ TEST(Cli, TinyExperimentRunsWritesProvenanceAndResumes) {
   EXPECT_EQ(row.at("status"), "ok");
   EXPECT_EQ(row.at("params").at("scene").at("n_x"), 12);  // defaults are echoed
   EXPECT_GT(row.at("cost").at("steps").get<int>(), 0);
-  for (const char* key : {"git_commit", "compiler", "build_type", "date_utc", "host", "threads"})
-    EXPECT_TRUE(table.at("provenance").contains(key)) << key;
+  for (const char* key : {"git_commit", "dirty", "compiler", "build_type", "date_utc", "host", "threads"})
+    EXPECT_TRUE(row.at("provenance").contains(key)) << key;  // each row: the run that computed it
+  EXPECT_EQ(table.at("provenance").at("commits"), closurelab::json::array({row["provenance"]["git_commit"]}));
   const Outcome again = run_cli("run " + spec.string() + " --out " + (work / "out").string());
   EXPECT_EQ(again.code, 0);
   EXPECT_NE(again.err.find("already done"), std::string::npos) << again.err;

@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""The one summary tool: reads a table's kind (and, where one kind has several views, its experiment name or
+scene) and writes its summary with the matching view.
+
+Usage: python3 experiments/summaries/summarize.py TABLE.json [MORE.json ...] [OUT_DIR]
+OUT_DIR defaults to the first table's folder. Writes OUT_DIR/summary.md (OUT_DIR/SUMMARY.md for the
+deconvolution hard-case suite, which takes all its tables at once) and, where python3-matplotlib is available
+and the view draws one, OUT_DIR/summary.png (two-phase reduced model: case*.png, pareto_case*.png; it takes the
+main table and the eta' sweep). `--which TABLE.json` prints the view that would be used and exits.
+`--view front|profiles TABLE.json [OUT_DIR]` draws one reduced_model table's speed-against-error front
+(OUT_DIR/front.md, .png) or its profiles (OUT_DIR/profiles.md, .png) whatever its name;
+`--headline OUT_DIR TABLE.json ...` writes the quick run's OUT_DIR/summary.md and prints its headline.
+
+Views (the summarize_*.py files beside this one, kept importable and runnable on their own):
+  deconvolution_stability                          summarize_stability      tables -> SUMMARY.md
+  quadrature_convergence                           summarize_appendix_c     table  -> summary.md
+  direct_sph_validation  experiment appendix_b     summarize_appendix_b     table  -> summary.md
+                         layered-two-phase scene   summarize_two_phase      table  -> summary.md
+                         otherwise                 summarize_validation     table  -> summary.md
+  reduced_model          experiment pareto_*       summarize_pareto         table  -> summary.md, summary.png
+                         experiment two_phase      summarize_two_phase_reduced  main, eta -> OUT_DIR/
+                         otherwise                 summarize_reduced_model  table  -> summary.md, summary.png
+Every number is read from the tables.
+"""
+import contextlib
+import json
+import os
+import runpy
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def view_of(table):
+    kind, name = table.get("kind"), table.get("experiment", "")
+    if kind == "deconvolution_stability":
+        return "summarize_stability", "stdout", "SUMMARY.md"
+    if kind == "quadrature_convergence":
+        return "summarize_appendix_c", "stdout", "summary.md"
+    if kind == "direct_sph_validation":
+        if name == "appendix_b":
+            return "summarize_appendix_b", "stdout", "summary.md"
+        scenes = {r.get("params", {}).get("scene", {}).get("name") for r in table.get("rows", [])}
+        if "layered-two-phase" in scenes:
+            return "summarize_two_phase", "stdout", "summary.md"
+        return "summarize_validation", "stdout", "summary.md"
+    if kind == "reduced_model":
+        if name.startswith("pareto_"):
+            return "summarize_pareto", "prefix", "summary"
+        if name == "two_phase":
+            return "summarize_two_phase_reduced", "folder", ""
+        return "summarize_reduced_model", "prefix", "summary"
+    raise SystemExit(f"summarize: table kind '{kind}' has no view; known kinds: deconvolution_stability, "
+                     "quadrature_convergence, direct_sph_validation, reduced_model")
+
+
+def run_view(script, args, stdout_file=None):
+    path = os.path.join(HERE, script + ".py")
+    saved_argv, saved_path = sys.argv, list(sys.path)
+    sys.argv = [path] + args
+    sys.path.insert(0, HERE)
+    try:
+        if stdout_file is None:
+            runpy.run_path(path, run_name="__main__")
+        else:
+            with open(stdout_file, "w") as out, contextlib.redirect_stdout(out):
+                runpy.run_path(path, run_name="__main__")
+    finally:
+        sys.argv, sys.path = saved_argv, saved_path
+
+
+def main(argv):
+    if not argv or argv[0] in ("-h", "--help"):
+        print(__doc__)
+        return 0 if argv else 2
+    if argv[0] == "--headline":
+        run_view("summarize_headline", argv[1:])
+        return 0
+    forced = None
+    if argv[0] == "--view":
+        views = {"front": ("summarize_pareto", "prefix", "front"),
+                 "profiles": ("summarize_reduced_model", "prefix", "profiles")}
+        if len(argv) < 3 or argv[1] not in views:
+            print("usage: summarize.py --view front|profiles TABLE.json [OUT_DIR]", file=sys.stderr)
+            return 2
+        forced = views[argv[1]]
+        argv = argv[2:]
+    which = argv[0] == "--which"
+    args = argv[1:] if which else argv
+    tables = [a for a in args if a.endswith(".json")]
+    rest = [a for a in args if not a.endswith(".json")]
+    if not tables or len(rest) > 1:
+        print("usage: summarize.py TABLE.json [MORE.json ...] [OUT_DIR]", file=sys.stderr)
+        return 2
+    with open(tables[0]) as f:
+        first = json.load(f)
+    script, contract, target = forced or view_of(first)
+    if which:
+        print(script)
+        return 0
+    out_dir = rest[0] if rest else (os.path.dirname(tables[0]) or ".")
+    os.makedirs(out_dir, exist_ok=True)
+    if contract == "stdout":
+        run_view(script, tables, os.path.join(out_dir, target))
+    elif contract == "prefix":
+        run_view(script, [tables[0], os.path.join(out_dir, target)])
+    else:
+        run_view(script, tables + [out_dir])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

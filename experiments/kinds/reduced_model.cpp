@@ -80,9 +80,10 @@ class ReducedModel : public ExperimentKind {
             {"kernel", "the averaging kernel; its eta must equal the scene's", "kernel", {}},
             {"closure", "the deconvolution closure", "", closure_schema()},
             {"quadrature", "the stress quadrature (default exact)", "quadrature", {}},
-            {"solver", "the coarse solver", "", meso_schema()},
+            {"solver", "the coarse solver", "", meso_solver_schema()},
             {"reference", "the direct SPH reference", "", reference_schema()},
-            {"transient", "snapshots of both solvers", "", transient_schema()}};
+            {"transient", "snapshots of both solvers", "", transient_schema()},
+            {"oracle", "oracle substitution from the direct SPH (the error budget)", "", oracle_schema()}};
   }
 
   json resolve(const json& cell, const std::string& path, const Registry& reg) const override {

@@ -18,6 +18,7 @@ Views (the summarize_*.py files beside this one, kept importable and runnable on
                          layered-two-phase scene   summarize_two_phase      table  -> summary.md
                          otherwise                 summarize_validation     table  -> summary.md
   reduced_model          experiment pareto_*       summarize_pareto         table  -> summary.md, summary.png
+                         experiment error_budget_* summarize_error_budget  table  -> summary.md, summary.png
                          experiment two_phase      summarize_two_phase_reduced  main, eta -> OUT_DIR/
                          otherwise                 summarize_reduced_model  table  -> summary.md, summary.png
 Every number is read from the tables.
@@ -47,6 +48,8 @@ def view_of(table):
     if kind == "reduced_model":
         if name.startswith("pareto_"):
             return "summarize_pareto", "prefix", "summary"
+        if name.startswith("error_budget_"):
+            return "summarize_error_budget", "prefix", "summary"
         if name == "two_phase":
             return "summarize_two_phase_reduced", "folder", ""
         return "summarize_reduced_model", "prefix", "summary"

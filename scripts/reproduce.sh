@@ -79,6 +79,11 @@ experiments/speed_vs_error/kolmogorov.json results/speed_vs_error/kolmogorov
 experiments/paper/two_phase_direct.json results/two_phase/direct
 experiments/paper/two_phase.json results/two_phase/two_phase
 experiments/paper/two_phase_eta.json results/two_phase/two_phase_eta
+experiments/error_budget/poiseuille_uniform.json results/error_budget/poiseuille_uniform
+experiments/error_budget/fig4.json results/error_budget/fig4
+experiments/error_budget/two_phase_case3.json results/error_budget/two_phase_case3
+experiments/near_wall/fig2.json results/near_wall/fig2
+experiments/near_wall/two_phase.json results/near_wall/two_phase
 LIST
 fi
 

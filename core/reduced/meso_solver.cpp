@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <sstream>
 
 #include "core/averaging/averaging.hpp"
+#include "core/reduced/averaged_force_map.hpp"
 #include "core/base/errors.hpp"
 #include "core/closure/reconstruction.hpp"
 #include "core/base/snapshot_schedule.hpp"
@@ -113,12 +113,13 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
   if (!periodic_ && !walls_are_data_) held_.front() = held_.back() = true;  // (5.6)/(5.14)
   if (opt_.balance != "stress_divergence" && opt_.balance != "force_density")
     throw ConfigError("/solver/balance", "unknown balance '" + opt_.balance + "'; known: stress_divergence, force_density");
-  if (opt_.balance == "force_density") build_force_density_map();
+  if (opt_.balance == "force_density") force_density_map_ = fluid_force_density_map(scene, kernel, coarse_);
   if (opt_.time_integration != "explicit" && opt_.time_integration != "backward_euler")
     throw ConfigError("/solver/time_integration", "unknown time integration '" + opt_.time_integration + "'; known: explicit, backward_euler");
   if (opt_.wall_node_value != "imposed" && opt_.wall_node_value != "reconstructed")
     throw ConfigError("/solver/wall_node_value", "unknown value '" + opt_.wall_node_value + "'; known: imposed, reconstructed");
-  if (opt_.wall_constraint_forces && scene.has_walls && opt_.balance != "force_density") build_constraint_map();
+  if (opt_.wall_constraint_forces && scene.has_walls && opt_.balance != "force_density")
+    constraint_map_ = wall_constraint_force_map(scene, kernel, coarse_);
 }
 
 void MesoSolver::hold_nodes() {
@@ -195,113 +196,12 @@ Eigen::VectorXd MesoSolver::reported_velocity() {
   return v;
 }
 
-// F_c is affine in the fluid velocities (positions stay on the lattice, so the pressure part and the
-// factor (μ_i+μ_j)F/(n_i n_j) of (5.1) are fixed), and in an x-invariant flow the reconstruction is a
-// function of y alone: F_c = c₀ + M v(rows) over the fluid rows that reach a wall particle. M is probed
-// once, one row at a time, with the real pair forces (5.1); each step then costs O(nodes × rows).
-void MesoSolver::build_constraint_map() {
-  const Scene strip = scene_.narrowest_strip();  // F_c per unit length: the narrowest strip gives it
-  ParticleSystem lattice = strip.make_particles();
-  SphEngine engine(strip, lattice);
-  const double reach = SmoothingKernel::from_name(scene_.smoothing_kernel, scene_.h).support();
-  std::vector<std::int32_t> walls;
-  std::map<long, std::vector<std::int32_t>> rows;  // fluid rows within reach of a wall, by lattice row index
-  for (std::size_t a = 0; a < lattice.size(); ++a) {
-    const double y = lattice.y[a];
-    if (lattice.fixed[a]) {
-      if (y > scene_.wall_lo - reach && y < scene_.wall_hi + reach) walls.push_back(static_cast<std::int32_t>(a));
-    } else if (y < scene_.wall_lo + reach || y > scene_.wall_hi - reach) {
-      rows[std::lround(y / scene_.dx - 0.5)].push_back(static_cast<std::int32_t>(a));
-    }
-  }
-  // ψ(node − q_i) for the wall particles, the column at x = 0 summing the periodic images in x.
-  Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(coarse_.count, static_cast<Eigen::Index>(walls.size()));
-  const double r = kernel_.support_radius();
-  for (std::size_t w = 0; w < walls.size(); ++w) {
-    const int a = walls[w];
-    double wx = 0.0;
-    for (int k = static_cast<int>(std::floor((-r - lattice.x[a]) / strip.box.lx));
-         k <= static_cast<int>(std::ceil((r - lattice.x[a]) / strip.box.lx)); ++k)
-      wx += kernel_.factor(lattice.x[a] + k * strip.box.lx);
-    for (int n = 0; n < coarse_.count; ++n)
-      weights(n, static_cast<Eigen::Index>(w)) = wx * kernel_.factor(coarse_.node(n) - lattice.y[a]);
-  }
-  const auto force_on_walls = [&]() {  // F_c = −Σ_walls f_i^int ψ(node − q_i) for the current velocities
-    std::vector<double> net(lattice.size(), 0.0);
-    for (const PairForce& p : engine.pair_forces()) {
-      net[p.j] += p.f.x();
-      net[p.k] -= p.f.x();
-    }
-    Eigen::VectorXd c(static_cast<Eigen::Index>(walls.size()));
-    for (std::size_t w = 0; w < walls.size(); ++w) c[static_cast<Eigen::Index>(w)] = -net[walls[w]];
-    return Eigen::VectorXd(weights * c);
-  };
-  constraint_offset_ = force_on_walls();
-  constraint_map_ = Eigen::MatrixXd::Zero(coarse_.count, static_cast<Eigen::Index>(rows.size()));
-  Eigen::Index col = 0;
-  for (const auto& [row, ids] : rows) {
-    for (int a : ids) lattice.vx[a] = 1.0;
-    constraint_map_.col(col) = force_on_walls() - constraint_offset_;
-    for (int a : ids) lattice.vx[a] = 0.0;
-    constraint_rows_.emplace_back(0.0, lattice.y[ids.front()]);
-    ++col;
-  }
-}
-
-// Σ_{j fluid} ψ(node − q_j) f_j^x is affine in the fluid velocities for the same reason as F_c; probed one
-// fluid row at a time on the narrowest strip (per unit length, like ρ̄ and F̄).
-void MesoSolver::build_force_density_map() {
-  const Scene strip = scene_.narrowest_strip();
-  ParticleSystem lattice = strip.make_particles();
-  SphEngine engine(strip, lattice);
-  std::map<long, std::vector<std::int32_t>> rows;
-  std::vector<std::int32_t> fluid;
-  for (std::size_t a = 0; a < lattice.size(); ++a)
-    if (!lattice.fixed[a]) {
-      fluid.push_back(static_cast<std::int32_t>(a));
-      rows[std::lround(lattice.y[a] / scene_.dx - 0.5)].push_back(static_cast<std::int32_t>(a));
-    }
-  Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(coarse_.count, static_cast<Eigen::Index>(fluid.size()));
-  const double r = kernel_.support_radius();
-  for (std::size_t f = 0; f < fluid.size(); ++f) {
-    const int a = fluid[f];
-    double wx = 0.0;
-    for (int k = static_cast<int>(std::floor((-r - lattice.x[a]) / strip.box.lx));
-         k <= static_cast<int>(std::ceil((r - lattice.x[a]) / strip.box.lx)); ++k)
-      wx += kernel_.factor(lattice.x[a] + k * strip.box.lx);
-    for_nodes_within(coarse_, lattice.y[a], r, [&](int n, double d) {
-      weights(n, static_cast<Eigen::Index>(f)) += wx * kernel_.factor(d);
-    });
-  }
-  const auto density = [&]() {
-    std::vector<double> net(lattice.size(), 0.0);
-    for (const PairForce& p : engine.pair_forces()) {
-      net[p.j] += p.f.x();
-      net[p.k] -= p.f.x();
-    }
-    Eigen::VectorXd c(static_cast<Eigen::Index>(fluid.size()));
-    for (std::size_t f = 0; f < fluid.size(); ++f) c[static_cast<Eigen::Index>(f)] = net[fluid[f]];
-    return Eigen::VectorXd(weights * c);
-  };
-  force_offset_ = density();
-  force_map_ = Eigen::MatrixXd::Zero(coarse_.count, static_cast<Eigen::Index>(rows.size()));
-  Eigen::Index col = 0;
-  for (const auto& [row, ids] : rows) {
-    for (int a : ids) lattice.vx[a] = 1.0;
-    force_map_.col(col) = density() - force_offset_;
-    for (int a : ids) lattice.vx[a] = 0.0;
-    force_rows_.emplace_back(0.0, lattice.y[ids.front()]);
-    ++col;
-  }
-}
-
 Eigen::VectorXd MesoSolver::constraint_force() {
-  const Eigen::Matrix2Xd v = sample_reconstruction(constraint_rows_);
-  return constraint_offset_ + constraint_map_ * v.row(0).transpose();
+  return constraint_map_.apply(sample_reconstruction(constraint_map_.rows).row(0).transpose());
 }
 
 Eigen::VectorXd MesoSolver::wall_constraint_force() {
-  if (constraint_map_.size() == 0) return Eigen::VectorXd::Zero(coarse_.count);
+  if (constraint_map_.rows.empty()) return Eigen::VectorXd::Zero(coarse_.count);
   std::string issue;
   if (!close_stress(issue)) throw NumericalError(issue);
   return constraint_force();
@@ -370,8 +270,7 @@ bool MesoSolver::rate(Eigen::VectorXd& dvdt, std::string& issue) {
   if (opt_.balance == "force_density") {
     if (!deconvolve(issue)) return false;
     const auto t1 = std::chrono::steady_clock::now();
-    const Eigen::VectorXd rows = sample_reconstruction(force_rows_).row(0).transpose();
-    const Eigen::VectorXd density = force_offset_ + force_map_ * rows;
+    const Eigen::VectorXd density = force_density_map_.apply(sample_reconstruction(force_density_map_.rows).row(0).transpose());
     quad_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     if (!density.allFinite()) {
       issue = "force density is not finite";
@@ -401,7 +300,7 @@ bool MesoSolver::rate(Eigen::VectorXd& dvdt, std::string& issue) {
       }
     }
   }
-  if (constraint_map_.size() > 0) dtdy += constraint_force();
+  if (!constraint_map_.rows.empty()) dtdy += constraint_force();
   dvdt = dtdy.cwiseQuotient(rho_bar_) + accel_force_;
   return true;
 }

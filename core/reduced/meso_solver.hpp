@@ -20,6 +20,7 @@
 #include "core/closure/deconvolver.hpp"
 #include "core/closure/forward_operator.hpp"
 #include "core/closure/reconstruction.hpp"
+#include "core/reduced/averaged_force_map.hpp"
 #include "core/base/params.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_engine.hpp"
@@ -128,8 +129,6 @@ class MesoSolver {
   bool probe_jacobian(std::string& issue);
   void hold_nodes();                      // held nodes back to their values
   Eigen::VectorXd constraint_force();     // F_c at the coarse nodes for the current reconstruction
-  void build_constraint_map();
-  void build_force_density_map();
 
   const Scene& scene_;
   const AveragingKernel& kernel_;
@@ -140,14 +139,9 @@ class MesoSolver {
   ForwardOperator op_;
   bool periodic_ = false;
   Eigen::VectorXd v_, accel_force_, rho_bar_, t_, reconstruction_;
-  // The wall constraint forces as an affine map of the reconstruction on the fluid rows next to the walls.
-  Eigen::VectorXd constraint_offset_;
-  Eigen::MatrixXd constraint_map_;
-  std::vector<Vec2> constraint_rows_;  // one sample point (x = 0, y of the row) per column of the map
-  // The force density Σ_F ψ f_j at the coarse nodes as an affine map of the reconstruction on the fluid rows.
-  Eigen::VectorXd force_offset_;
-  Eigen::MatrixXd force_map_;
-  std::vector<Vec2> force_rows_;
+  // The wall constraint forces, and the force density of the exact balance, as affine maps of the
+  // reconstruction on the fluid rows (core/reduced/averaged_force_map.hpp); empty when not used.
+  AveragedForceMap constraint_map_, force_density_map_;
   bool walls_are_data_ = false;
   Eigen::MatrixXd jacobian_;  // backward Euler: ∂(rate)/∂v̄ and the rate at jacobian_base_
   Eigen::VectorXd rate_offset_, jacobian_base_;  // the wall-surface nodes evolve and are deconvolution data

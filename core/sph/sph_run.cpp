@@ -57,9 +57,8 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
         break;
       }
       dt = std::min(dt, opt.target_time - res.time);
-    } else if (res.time >= opt.max_time) {
-      break;
     }
+    if (res.time >= opt.max_time) break;  // in both modes (validation refuses target_time > max_time)
     engine.step(dt);
     res.dt = dt_full;
     res.time += dt;
@@ -110,8 +109,14 @@ ParamSchema sph_solver_schema() {
       number_param("steady_tolerance", 1e-5, "steady state: max relative change of v_x over the window", 0.0, 1.0, true),
       integer_param("steady_window", 1000, "steady state: window in steps", 1, {}),
       number_param("max_time", 100.0, "give up (no_convergence) after this model time", 0.0, {}, true),
-      integer_param("max_steps", 50000000, "give up after this many steps", 1, {}),
+      integer_param("max_steps", 50000000, "give up after this many steps", 1, {}, IntegerKind::int64),
   };
+}
+
+void check_sph_solver(const json& s, const std::string& path) {
+  if (s.at("mode") == "target_time" && !(s.at("target_time").get<double>() <= s.at("max_time").get<double>()))
+    throw ConfigError(path + "/target_time", "target_time " + s.at("target_time").dump() + " exceeds max_time " +
+                                                 s.at("max_time").dump() + " (raise max_time to run that long)");
 }
 
 SphRunOptions sph_run_options_from(const json& s) {

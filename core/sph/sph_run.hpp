@@ -45,5 +45,7 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& particles, const
 // The parameter schema of the direct solver as experiment specs name it ("solver": {...}).
 ParamSchema sph_solver_schema();
 SphRunOptions sph_run_options_from(const json& resolved_solver);
+// Cross-parameter checks of a resolved solver section (`path` is its JSON path): target_time <= max_time.
+void check_sph_solver(const json& resolved_solver, const std::string& path);
 
 }  // namespace closurelab

@@ -130,6 +130,7 @@ class SphValidation : public ExperimentKind {
     if (!scene->analytic_vx) throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
     build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["solver"] = resolve_section(cell, "solver", sph_solver_schema(), path);
+    check_sph_solver(out["solver"], path + "/solver");
     out["averaging"] = resolve_section(cell, "averaging", averaging_schema(), path);
     return out;
   }

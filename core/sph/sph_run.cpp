@@ -10,7 +10,7 @@
 namespace closurelab {
 
 json SphRunResult::to_json() const {
-  return {{"status", status},
+  json j = {{"status", status},
           {"steps", steps},
           {"time", time},
           {"dt", dt},
@@ -22,6 +22,8 @@ json SphRunResult::to_json() const {
           {"particle_steps", static_cast<double>(moving_particles) * static_cast<double>(steps)},
           {"pair_evaluations", pair_evaluations},
           {"list_rebuilds", list_rebuilds}};
+  if (!message.empty()) j["message"] = message;
+  return j;
 }
 
 SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRunOptions& opt) {
@@ -94,6 +96,20 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
         res.status = "numerical_issue";  // also between the periodic checks, e.g. at the target time
         break;
       }
+  // Why a run is not a result (committed no_convergence rows had no message).
+  std::ostringstream why;
+  if (res.status == "numerical_issue") {
+    why << "non-finite particle state at step " << res.steps << ", t = " << res.time;
+  } else if (res.status == "no_convergence") {
+    if (res.steps >= opt.max_steps) why << "max_steps = " << opt.max_steps << " reached at t = " << res.time;
+    else why << "max_time = " << opt.max_time << " reached";
+    if (opt.to_steady_state)
+      why << " before steady state (last relative change " << res.last_relative_change << " over "
+          << opt.steady_window << " steps, tolerance " << opt.steady_tolerance << ")";
+    else
+      why << " before target_time = " << opt.target_time;
+  }
+  res.message = why.str();
   res.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
   res.pair_evaluations = engine.pair_evaluations();
   res.list_rebuilds = engine.list_rebuilds();

@@ -37,6 +37,7 @@ struct SphRunResult {
   double time = 0.0, dt = 0.0, wall_seconds = 0.0, last_relative_change = 0.0;
   std::int64_t moving_particles = 0, active_particles = 0, total_particles = 0;
   std::int64_t pair_evaluations = 0, list_rebuilds = 0;
+  std::string message;  // why, when status is no_convergence or numerical_issue
   json to_json() const;
 };
 

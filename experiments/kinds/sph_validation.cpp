@@ -149,6 +149,7 @@ class SphValidation : public ExperimentKind {
     json row;
     row["status"] = (sph.status == "converged" || sph.status == "target_time") ? "ok" : sph.status;
     row["direct_sph"] = sph.to_json();
+    if (!sph.message.empty()) row["message"] = sph.message;
     row["scene_derived"] = {{"dx", scene->dx},           {"eta", scene->eta},
                             {"l1", scene->wall_lo},      {"l2", scene->wall_hi},
                             {"h", scene->h},             {"sound_speed", scene->sound_speed},

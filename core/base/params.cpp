@@ -2,10 +2,11 @@
 
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <cstdint>
+#include <limits>
 
 #include "core/base/errors.hpp"
+#include "core/base/json_reader.hpp"
 
 namespace closurelab {
 
@@ -15,8 +16,10 @@ ParamSpec number_param(std::string name, json def, std::string description, std:
   return ParamSpec{std::move(name), ParamType::Number, std::move(def), std::move(description), min, max, exclusive_min};
 }
 ParamSpec integer_param(std::string name, json def, std::string description, std::optional<double> min,
-                        std::optional<double> max) {
-  return ParamSpec{std::move(name), ParamType::Integer, std::move(def), std::move(description), min, max};
+                        std::optional<double> max, IntegerKind kind) {
+  ParamSpec p{std::move(name), ParamType::Integer, std::move(def), std::move(description), min, max};
+  p.integer_kind = kind;
+  return p;
 }
 ParamSpec string_param(std::string name, json def, std::string description, std::vector<std::string> choices) {
   ParamSpec p{std::move(name), ParamType::String, std::move(def), std::move(description)};
@@ -59,6 +62,31 @@ bool type_matches(const json& v, ParamType t) {
   return false;
 }
 
+// The value of an Integer parameter must fit the type it is read into (json holds up to 64 bits; a get<int>()
+// of 2^32 would silently give 0). Compared as integers, not doubles (2^63 - 1 is not a double).
+void check_integer_width(const json& v, IntegerKind kind, const std::string& at) {
+  std::int64_t lo = 0;
+  std::uint64_t hi = std::numeric_limits<std::uint64_t>::max();
+  const char* type = "uint64";
+  if (kind == IntegerKind::int32) {
+    lo = std::numeric_limits<std::int32_t>::min();
+    hi = static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max());
+    type = "32-bit signed integer";
+  } else if (kind == IntegerKind::int64) {
+    lo = std::numeric_limits<std::int64_t>::min();
+    hi = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
+    type = "64-bit signed integer";
+  } else {
+    type = "64-bit unsigned integer";
+  }
+  const bool fits = v.is_number_unsigned() ? v.get<std::uint64_t>() <= hi
+                                           : (v.get<std::int64_t>() >= lo &&
+                                              (v.get<std::int64_t>() < 0 || static_cast<std::uint64_t>(v.get<std::int64_t>()) <= hi));
+  if (!fits)
+    throw ConfigError(at, "value " + v.dump() + " does not fit a " + type + " (allowed " + std::to_string(lo) + " to " +
+                              std::to_string(hi) + ")");
+}
+
 std::string allowed_keys(const ParamSchema& schema) {
   std::string s;
   for (const auto& p : schema) s += (s.empty() ? "" : ", ") + p.name;
@@ -93,6 +121,7 @@ json resolve_params(const json& given, const ParamSchema& schema, const std::str
     }
     if (!type_matches(v, p.type))
       throw ConfigError(at, "expected " + to_string(p.type) + ", got " + std::string(v.type_name()) + " (" + v.dump() + ")");
+    if (p.type == ParamType::Integer) check_integer_width(v, p.integer_kind, at);
     if (p.type == ParamType::Number || p.type == ParamType::Integer) {
       const double x = v.get<double>();
       if (!std::isfinite(x)) throw ConfigError(at, "must be finite");
@@ -126,17 +155,7 @@ json schema_to_json(const ParamSchema& schema) {
   return a;
 }
 
-json read_json_file(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw ConfigError("", "cannot open '" + file + "'");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  try {
-    return json::parse(ss.str());
-  } catch (const json::exception& e) {  // syntax errors, and numbers that overflow (1e999)
-    throw ConfigError("", "malformed JSON in '" + file + "': " + e.what());
-  }
-}
+json read_json_file(const std::string& file) { return read_json_file_guarded(file); }
 
 double require_finite(double x, const std::string& what) {
   if (!std::isfinite(x)) throw NumericalError(what + " is not finite");

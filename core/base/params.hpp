@@ -12,6 +12,9 @@ namespace closurelab {
 using json = nlohmann::json;
 
 enum class ParamType { Integer, Number, String, Boolean, Object, Array };
+// The C++ type an Integer parameter is read into: its range bounds the value whatever min/max say (a value
+// that does not fit is an error naming the path, never a silent truncation).
+enum class IntegerKind { int32, int64, uint64 };
 
 struct ParamSpec {
   std::string name;
@@ -22,13 +25,14 @@ struct ParamSpec {
   std::optional<double> max{};
   bool exclusive_min = false;          // true: value must be > min
   std::vector<std::string> choices{};  // allowed values for String
+  IntegerKind integer_kind = IntegerKind::int32;  // Integer: the type the value is read into
 };
 
 // Convenience constructors, so schemas read as tables.
 ParamSpec number_param(std::string name, json def, std::string description, std::optional<double> min = {},
                        std::optional<double> max = {}, bool exclusive_min = false);
 ParamSpec integer_param(std::string name, json def, std::string description, std::optional<double> min = {},
-                        std::optional<double> max = {});
+                        std::optional<double> max = {}, IntegerKind kind = IntegerKind::int32);
 ParamSpec string_param(std::string name, json def, std::string description, std::vector<std::string> choices = {});
 ParamSpec bool_param(std::string name, bool def, std::string description);
 ParamSpec object_param(std::string name, json def, std::string description);
@@ -45,7 +49,8 @@ json resolve_params(const json& given, const ParamSchema& schema, const std::str
 std::string to_string(ParamType t);
 json schema_to_json(const ParamSchema& schema);
 
-// Reads and parses a JSON file; a clear ConfigError on a missing file or a syntax error.
+// Reads and parses a JSON file; a clear ConfigError on a missing file, a syntax error, a file that is not a
+// regular file or too large, nesting deeper than 64 levels or a duplicate key (core/base/json_reader.hpp).
 json read_json_file(const std::string& file);
 
 // Throws NumericalError naming `what` if `x` is not finite.

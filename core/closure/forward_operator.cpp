@@ -6,6 +6,7 @@
 
 #include "core/averaging/averaging_kernel.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 
 namespace closurelab {
 
@@ -109,6 +110,8 @@ Eigen::VectorXd ForwardOperator::apply_transpose(const Eigen::VectorXd& y) const
 }
 
 Eigen::MatrixXd ForwardOperator::to_dense() const {
+  check_allocation(static_cast<double>(rows_) * static_cast<double>(cols_), sizeof(double),
+                   "a dense copy of the " + std::to_string(rows_) + " x " + std::to_string(cols_) + " operator");
   switch (storage_) {
     case OperatorStorage::dense: return dense_;
     case OperatorStorage::sparse: return Eigen::MatrixXd(sparse_);

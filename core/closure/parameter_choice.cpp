@@ -2,11 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "core/base/errors.hpp"
 
 namespace closurelab {
+
+namespace {
+// Six significant digits at any scale (std::to_string prints 1e-9 as 0.000000).
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+}  // namespace
 
 ParameterRule parse_parameter_rule(const std::string& s, const std::string& path) {
   if (s == "fixed") return ParameterRule::fixed;
@@ -140,8 +150,8 @@ DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& 
     }
     if (r.status == DeconvolutionStatus::converged && !(r.stats.residual_norm <= target)) {
       r.status = DeconvolutionStatus::no_convergence;
-      r.stats.message = "discrepancy principle not met: smallest residual " + std::to_string(r.stats.residual_norm) +
-                        " > tau*delta = " + std::to_string(target) + "; returned the smallest-residual member";
+      r.stats.message = "discrepancy principle not met: smallest residual " + short_number(r.stats.residual_norm) +
+                        " > tau*delta = " + short_number(target) + "; returned the smallest-residual member";
     }
     r.stats.iterations = visited;
     return r;

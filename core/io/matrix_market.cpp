@@ -1,7 +1,10 @@
 #include "core/io/matrix_market.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <filesystem>
+#include <limits>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -49,8 +52,26 @@ double parse_value(LineReader& r, std::istringstream& ss) {
 }
 
 long parse_index(LineReader& r, std::istringstream& ss, const char* what) {
-  long v = 0;
-  if (!(ss >> v)) r.fail(std::string("expected an integer ") + what);
+  std::string tok;
+  if (!(ss >> tok)) r.fail(std::string("expected an integer ") + what);
+  errno = 0;
+  char* end = nullptr;
+  const long v = std::strtol(tok.c_str(), &end, 10);
+  if (end == tok.c_str() || *end != '\0' || errno == ERANGE)
+    r.fail(std::string("expected an integer ") + what + ", got '" + tok + "'");
+  return v;
+}
+
+// Every data line holds exactly the expected tokens (a lax reader silently drops a misplaced column).
+void expect_line_end(LineReader& r, std::istringstream& ss) {
+  std::string extra;
+  if (ss >> extra) r.fail("unexpected extra token '" + extra + "'");
+}
+
+double parse_entry(LineReader& r, std::istringstream& ss, bool integer_field) {
+  const double v = parse_value(r, ss);
+  if (integer_field && v != std::floor(v)) r.fail("non-integer value in an integer matrix");
+  expect_line_end(r, ss);
   return v;
 }
 
@@ -59,6 +80,16 @@ long parse_index(LineReader& r, std::istringstream& ss, const char* what) {
 MatrixMarketData read_matrix_market(const std::string& file) {
   LineReader r;
   r.file = file;
+  // A regular file of bounded size (a device such as /dev/zero would be read until memory runs out); the
+  // declared sizes are checked against the file's bytes before anything is allocated.
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw ConfigError(file, "cannot open the Matrix Market file (no such file)");
+  if (!std::filesystem::is_regular_file(file, ec)) throw ConfigError(file, "not a regular file");
+  const auto bytes = static_cast<long>(std::filesystem::file_size(file, ec));
+  if (ec) throw ConfigError(file, "cannot read the file size: " + ec.message());
+  if (bytes > kMatrixMarketMaxBytes)
+    throw ConfigError(file, "file of " + std::to_string(bytes) + " bytes exceeds the reader's limit of " +
+                                std::to_string(kMatrixMarketMaxBytes) + " bytes");
   r.in.open(file);
   if (!r.in) throw ConfigError(file, "cannot open the Matrix Market file");
   std::string banner;
@@ -85,9 +116,14 @@ MatrixMarketData read_matrix_market(const std::string& file) {
   d.cols = parse_index(r, ss, "column count");
   if (d.rows <= 0 || d.cols <= 0) r.fail("matrix dimensions must be positive");
   if (symmetric && d.rows != d.cols) r.fail("a symmetric matrix must be square");
+  const bool integer_field = field == "integer";
   if (d.coordinate) {
     const long nnz = parse_index(r, ss, "entry count");
+    expect_line_end(r, ss);
     if (nnz < 0) r.fail("negative entry count");
+    // An entry line "i j v\n" takes at least 6 bytes.
+    if (nnz > bytes / 6)
+      r.fail("declares " + std::to_string(nnz) + " entries but the file has only " + std::to_string(bytes) + " bytes");
     std::vector<Eigen::Triplet<double>> t;
     t.reserve(static_cast<size_t>(symmetric ? 2 * nnz : nnz));
     for (long k = 0; k < nnz; ++k) {
@@ -95,7 +131,7 @@ MatrixMarketData read_matrix_market(const std::string& file) {
       std::istringstream es(line);
       const long i = parse_index(r, es, "row index"), j = parse_index(r, es, "column index");
       if (i < 1 || i > d.rows || j < 1 || j > d.cols) r.fail("index (" + std::to_string(i) + ", " + std::to_string(j) + ") out of range");
-      const double v = parse_value(r, es);
+      const double v = parse_entry(r, es, integer_field);
       t.emplace_back(i - 1, j - 1, v);
       if (symmetric && i != j) t.emplace_back(j - 1, i - 1, v);
     }
@@ -103,6 +139,13 @@ MatrixMarketData read_matrix_market(const std::string& file) {
     d.sparse.setFromTriplets(t.begin(), t.end());
     d.sparse.makeCompressed();
   } else {
+    expect_line_end(r, ss);
+    // An array entry "v\n" takes at least 2 bytes (symmetric: the lower triangle only).
+    const long budget = bytes / 2;
+    const long needed_per_col = symmetric ? (d.rows + 1) / 2 : d.rows;
+    if (d.cols > budget / std::max(needed_per_col, 1L))
+      r.fail("declares a " + std::to_string(d.rows) + " x " + std::to_string(d.cols) + " array but the file has only " +
+             std::to_string(bytes) + " bytes");
     d.dense.resize(d.rows, d.cols);
     d.dense.setZero();
     // Column-major; symmetric stores the lower triangle only.
@@ -110,7 +153,7 @@ MatrixMarketData read_matrix_market(const std::string& file) {
       for (Eigen::Index i = symmetric ? j : 0; i < d.rows; ++i) {
         if (!r.next(line)) r.fail("file ends before all " + std::to_string(d.rows * d.cols) + " array entries");
         std::istringstream es(line);
-        d.dense(i, j) = parse_value(r, es);
+        d.dense(i, j) = parse_entry(r, es, integer_field);
         if (symmetric) d.dense(j, i) = d.dense(i, j);
       }
   }

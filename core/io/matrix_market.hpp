@@ -2,12 +2,16 @@
 // A small Matrix Market reader/writer (NIST format, https://math.nist.gov/MatrixMarket/formats.html) for
 // `closurelab deconvolve`: "%%MatrixMarket matrix coordinate|array real|integer general|symmetric".
 // Errors (missing file, bad banner, unsupported field/symmetry, wrong counts, indices out of range, non-numeric
-// or non-finite entries) throw ConfigError naming the file and the line.
+// or non-finite entries, extra tokens, a fractional value in an integer matrix, sizes the file cannot hold)
+// throw ConfigError naming the file and the line.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <string>
 
 namespace closurelab {
+
+// The reader refuses larger files (and anything that is not a regular file) before reading.
+inline constexpr long kMatrixMarketMaxBytes = 1L << 31;  // 2 GiB
 
 struct MatrixMarketData {
   bool coordinate = false;             // coordinate (sparse) or array (dense) format

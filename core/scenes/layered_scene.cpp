@@ -11,6 +11,7 @@
 
 #include "core/scenes/analytic.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 #include "core/base/registry.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_kernel.hpp"
@@ -74,8 +75,9 @@ LayerLayout layered_layout(const json& p) {
   if (name == "custom") {
     if (rows.empty()) throw ConfigError("/layer_rows", "case custom needs the start rows of the layers");
     for (std::size_t k = 0; k < rows.size(); ++k) {
-      if (!rows[k].is_number_integer())
-        throw ConfigError("/layer_rows/" + std::to_string(k), "expected an integer row, got " + rows[k].dump());
+      if (!rows[k].is_number_integer() || rows[k].get<double>() < 0 || rows[k].get<double>() >= ny)
+        throw ConfigError("/layer_rows/" + std::to_string(k),
+                          "expected an integer row in [0, n_y) = [0, " + std::to_string(ny) + "), got " + rows[k].dump());
       lay.start_rows.push_back(rows[k].get<int>());
     }
     lay.width = p.at("layer_width").get<int>();
@@ -122,6 +124,7 @@ void register_layered_scene(Registry& r) {
         const double l = p.at("l").get<double>(), eta_over_l = p.at("eta_over_l").get<double>();
         s->ny = p.at("n_y").get<int>();
         s->nx = p.at("n_x").get<int>();
+        check_particle_memory(s->nx, 2L * s->ny, "/n_x");  // fluid rows plus the walls' (at most as many)
         s->dx = l / s->ny;
         s->eta = eta_over_l * l;
         if (eta_over_l > 1.0 / 6.0)

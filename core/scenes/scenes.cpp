@@ -3,6 +3,7 @@
 
 #include "core/scenes/analytic.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 #include "core/scenes/layered_scene.hpp"
 #include "core/base/registry.hpp"
 #include "core/sph/scene.hpp"
@@ -108,6 +109,7 @@ Scene make_channel(const std::string& name, const json& p, const std::string& pa
   s.params = p;
   s.ny = p.at("n_y").get<int>();
   s.nx = p.at("n_x").get<int>();
+  check_particle_memory(s.nx, s.ny, "/n_x");
   const double ly = p.at("ly").get<double>();
   s.dx = ly / s.ny;
   s.box = PeriodicBox{s.nx * s.dx, ly, true, false};
@@ -175,6 +177,7 @@ void register_scenes(Registry& r) {
         s->params = p;
         s->ny = p.at("n_y").get<int>();
         s->nx = p.at("n_x").get<int>();
+        check_particle_memory(s->nx, s->ny, "/n_x");
         const double ly = p.at("ly").get<double>();
         s->dx = ly / s->ny;
         s->box = PeriodicBox{s->nx * s->dx, ly, true, true};

@@ -11,7 +11,7 @@
 namespace closurelab {
 
 json SphRunResult::to_json() const {
-  return {{"status", status},
+  json j = {{"status", status},
           {"steps", steps},
           {"time", time},
           {"dt", dt},
@@ -23,6 +23,8 @@ json SphRunResult::to_json() const {
           {"particle_steps", static_cast<double>(moving_particles) * static_cast<double>(steps)},
           {"pair_evaluations", pair_evaluations},
           {"list_rebuilds", list_rebuilds}};
+  if (!message.empty()) j["message"] = message;
+  return j;
 }
 
 SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRunOptions& opt) {
@@ -59,9 +61,8 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
         break;
       }
       dt = std::min(dt, opt.target_time - res.time);
-    } else if (res.time >= opt.max_time) {
-      break;
     }
+    if (res.time >= opt.max_time) break;  // in both modes (validation refuses target_time > max_time)
     engine.step(dt);
     res.dt = dt_full;
     res.time += dt;
@@ -99,6 +100,20 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
         res.status = "numerical_issue";  // also between the periodic checks, e.g. at the target time
         break;
       }
+  // Why a run is not a result (committed no_convergence rows had no message).
+  std::ostringstream why;
+  if (res.status == "numerical_issue") {
+    why << "non-finite particle state at step " << res.steps << ", t = " << res.time;
+  } else if (res.status == "no_convergence") {
+    if (res.steps >= opt.max_steps) why << "max_steps = " << opt.max_steps << " reached at t = " << res.time;
+    else why << "max_time = " << opt.max_time << " reached";
+    if (opt.to_steady_state)
+      why << " before steady state (last relative change " << res.last_relative_change << " over "
+          << opt.steady_window << " steps, tolerance " << opt.steady_tolerance << ")";
+    else
+      why << " before target_time = " << opt.target_time;
+  }
+  res.message = why.str();
   res.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
   res.pair_evaluations = engine.pair_evaluations();
   res.list_rebuilds = engine.list_rebuilds();
@@ -117,8 +132,14 @@ ParamSchema sph_solver_schema() {
                    0.0, 1.0, true),
       integer_param("steady_window", d.steady_window, "steady state: window in steps", 1, {}),
       number_param("max_time", d.max_time, "give up (no_convergence) after this model time", 0.0, {}, true),
-      integer_param("max_steps", d.max_steps, "give up after this many steps", 1, {}),
+      integer_param("max_steps", d.max_steps, "give up after this many steps", 1, {}, IntegerKind::int64),
   };
+}
+
+void check_sph_solver(const json& s, const std::string& path) {
+  if (s.at("mode") == "target_time" && !(s.at("target_time").get<double>() <= s.at("max_time").get<double>()))
+    throw ConfigError(path + "/target_time", "target_time " + s.at("target_time").dump() + " exceeds max_time " +
+                                                 s.at("max_time").dump() + " (raise max_time to run that long)");
 }
 
 SphRunOptions sph_run_options_from(const json& s) {

@@ -37,6 +37,7 @@ struct SphRunResult {
   double time = 0.0, dt = 0.0, wall_seconds = 0.0, last_relative_change = 0.0;
   std::int64_t moving_particles = 0, active_particles = 0, total_particles = 0;
   std::int64_t pair_evaluations = 0, list_rebuilds = 0;
+  std::string message;  // why, when status is no_convergence or numerical_issue
   json to_json() const;
 };
 
@@ -46,5 +47,7 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& particles, const
 // SphRunOptions{}'s (one source), and sph_run_options_from(resolved defaults) == SphRunOptions{} (tested).
 ParamSchema sph_solver_schema();
 SphRunOptions sph_run_options_from(const json& resolved_solver);
+// Cross-parameter checks of a resolved solver section (`path` is its JSON path): target_time <= max_time.
+void check_sph_solver(const json& resolved_solver, const std::string& path);
 
 }  // namespace closurelab

@@ -137,6 +137,7 @@ class SphValidation : public ExperimentKind {
     if (!scene->analytic_vx) throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
     build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["solver"] = resolve_section(cell, "solver", sph_solver_schema(), path);
+    check_sph_solver(out["solver"], path + "/solver");
     out["averaging"] = resolve_section(cell, "averaging", averaging_schema(), path);
     return out;
   }
@@ -155,6 +156,7 @@ class SphValidation : public ExperimentKind {
     json row;
     row["status"] = (sph.status == "converged" || sph.status == "target_time") ? "ok" : sph.status;
     row["direct_sph"] = sph.to_json();
+    if (!sph.message.empty()) row["message"] = sph.message;
     row["scene_derived"] = {{"dx", scene->dx},           {"eta", scene->eta},
                             {"l1", scene->wall_lo},      {"l2", scene->wall_hi},
                             {"h", scene->h},             {"sound_speed", scene->sound_speed},

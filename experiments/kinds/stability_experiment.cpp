@@ -13,6 +13,7 @@
 #include "core/base/errors.hpp"
 #include "experiments/testproblems/ill_posed_problems.hpp"
 #include "experiments/testproblems/stability_case.hpp"
+#include "core/closure/deconvolver.hpp"
 
 namespace closurelab {
 namespace {
@@ -21,7 +22,7 @@ const std::vector<std::string> problem_names = {"gaussian_averaging", "shaw", "d
 
 ParamSchema run_schema() {
   return {number_param("noise", 0.0, "relative noise ||e||/||b||", 0.0, 10.0),
-          integer_param("seed", 12345, "noise RNG seed (std::mt19937_64)", 0),
+          integer_param("seed", 12345, "noise RNG seed (std::mt19937_64)", 0, {}, IntegerKind::uint64),
           bool_param("scan_best", true, "scan the family for the best parameter")};
 }
 
@@ -55,7 +56,9 @@ class StabilityExperiment : public ExperimentKind {
     json out;
     out["problem"] = resolve_params(pr, ill_posed_problem_schema(), path + "/problem");
     out["problem"]["name"] = pname;
-    out["method"] = reg.deconvolvers.resolve(cell.at("method"), path + "/method");
+    if (pname == "gaussian_averaging") check_ill_posed_problem_size(out["problem"], path + "/problem");
+    // create, not only resolve: the factory's cross-parameter checks (alpha_min < alpha_max) are validation.
+    reg.deconvolvers.create(cell.at("method"), path + "/method", &out["method"]);
     const json rest = resolve_params(json{{"noise", cell.value("noise", json(0.0))},
                                           {"seed", cell.value("seed", json(12345))},
                                           {"scan_best", cell.value("scan_best", json(true))}},

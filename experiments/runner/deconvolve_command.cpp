@@ -50,13 +50,17 @@ Options parse(int argc, char** argv) {
       const std::string v = value();
       char* end = nullptr;
       o.noise_level = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !std::isfinite(o.noise_level) || o.noise_level < 0)
+      // strtod also reads hexadecimal ("0x10" = 16) and "inf"/"nan": a decimal number only.
+      const bool decimal = v.find_first_not_of("0123456789.eE+-") == std::string::npos;
+      if (!decimal || end == v.c_str() || *end != '\0' || !std::isfinite(o.noise_level) || o.noise_level < 0)
         throw ConfigError("--noise-level", "expected a finite number >= 0, got '" + v + "'");
     } else if (a == "--param") {
       const std::string kv = value();
       const auto eq = kv.find('=');
       if (eq == std::string::npos || eq == 0) throw ConfigError("--param", "expected k=v, got '" + kv + "'");
       const std::string k = kv.substr(0, eq), v = kv.substr(eq + 1);
+      if (k == "name") throw ConfigError("--param", "the method is chosen with --method, not --param name=...");
+      if (o.params.contains(k)) throw ConfigError("--param", "'" + k + "' is given twice");
       json parsed;
       try {
         parsed = json::parse(v);
@@ -134,6 +138,10 @@ int run_deconvolve_command(int argc, char** argv) {
       out["x"] = r.x.allFinite() ? json(xs) : json(nullptr);
     }
     std::cout << out.dump(2) << "\n";
+    if (r.status == DeconvolutionStatus::numerical_issue) {
+      std::cerr << "error: numerical failure: " << r.stats.message << "\n";
+      return 1;  // the result is printed, but it is not a solution
+    }
     return 0;
   } catch (const ConfigError& e) {
     std::cerr << "error: " << e.what() << "\n" << usage_text;

@@ -16,6 +16,7 @@
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/runner/out_folder.hpp"
 #include "experiments/runner/provenance.hpp"
+#include "experiments/runner/spec_checks.hpp"
 
 namespace closurelab {
 
@@ -65,8 +66,7 @@ std::vector<MatrixCell> expand_matrix(const json& spec) {
     if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
       throw ConfigError("/" + k, "unknown key; allowed keys: name, kind, description, base, axes, cells");
   }
-  if (!spec.contains("name") || !spec["name"].is_string()) throw ConfigError("/name", "missing string \"name\"");
-  if (!spec.contains("kind") || !spec["kind"].is_string()) throw ConfigError("/kind", "missing string \"kind\"");
+  check_spec_top_level(spec);
   const json base = spec.value("base", json::object());
   if (!base.is_object()) throw ConfigError("/base", "expected an object");
 
@@ -119,6 +119,7 @@ std::vector<MatrixCell> expand_matrix(const json& spec) {
     c.id = fnv1a_hex(spec["kind"].get<std::string>() + c.config.dump());
     if (c.label.empty()) c.label = c.id;
   }
+  check_distinct_cells(cells);
   return cells;
 }
 

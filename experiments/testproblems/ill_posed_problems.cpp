@@ -8,6 +8,7 @@
 #include <random>
 
 #include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
 
 namespace closurelab {
@@ -135,11 +136,21 @@ ParamSchema ill_posed_problem_schema() {
           string_param("kernel", "gaussian", "gaussian_averaging: averaging kernel", {"gaussian", "cutoff_gaussian"}),
           number_param("cutoff_in_eta", 2.0, "gaussian_averaging with cutoff_gaussian: truncation radius / eta", 0.5, 20.0),
           integer_param("coarse_count", 64, "gaussian_averaging: coarse cells on [0, 1]", 2, 100000),
-          number_param("eta_over_h", 2.0, "gaussian_averaging: eta in coarse spacings", 0.0, {}, true),
+          number_param("eta_over_h", 2.0, "gaussian_averaging: eta in coarse spacings (a window wider than 1000 spacings averages everything to one number)", 0.0, 1000.0, true),
           integer_param("fine_ratio", 4, "gaussian_averaging: coarse / fine spacing", 1, 1000),
           string_param("discretization", "coarse_coarse", "gaussian_averaging: discretization (section 4.2)",
                        {"coarse_coarse", "coarse_fine", "fine_fine"}),
           bool_param("periodic", false, "gaussian_averaging: periodic [0, 1]")};
+}
+
+void check_ill_posed_problem_size(const json& p, const std::string& path) {
+  // Gaussian averaging: the operator, its SVD factors and work arrays, about four dense copies of rows x cols.
+  const double coarse = p.at("coarse_count").get<double>(), fine = coarse * p.at("fine_ratio").get<double>();
+  const std::string d = p.at("discretization").get<std::string>();
+  const double rows = d == "fine_fine" ? fine : coarse, cols = d == "coarse_coarse" ? coarse : fine;
+  check_allocation(rows * cols, 4.0 * sizeof(double),
+                   "a " + json(rows).dump() + " x " + json(cols).dump() + " dense test problem and its factorization",
+                   path + "/coarse_count");
 }
 
 IllPosedProblem make_ill_posed_problem(const json& config, const std::string& path) {
@@ -161,6 +172,7 @@ IllPosedProblem make_ill_posed_problem(const json& config, const std::string& pa
   s.fine_ratio = p.at("fine_ratio").get<int>();
   s.discretization = parse_discretization(p.at("discretization").get<std::string>(), path + "/discretization");
   s.periodic = p.at("periodic").get<bool>();
+  check_ill_posed_problem_size(p, path);
   try {
     return make_gaussian_problem(s);
   } catch (const ConfigError& e) {

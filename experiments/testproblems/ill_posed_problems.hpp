@@ -48,6 +48,9 @@ IllPosedProblem make_phillips_problem(int n);
 // Builds a problem from {"name": "gaussian_averaging"|"shaw"|"deriv2"|"phillips", ...}; ConfigError by path.
 IllPosedProblem make_ill_posed_problem(const json& config, const std::string& path);
 ParamSchema ill_posed_problem_schema();
+// Refuses (ConfigError at path/coarse_count) a resolved gaussian_averaging problem whose dense operator and
+// factorization would not fit the memory limit; cheap, for validation.
+void check_ill_posed_problem_size(const json& resolved_problem, const std::string& path);
 
 // Adds Gaussian white noise scaled to ‖e‖₂ = relative_level ‖b‖₂ (std::mt19937_64 seeded with `seed`);
 // returns the noisy data and writes δ = ‖e‖₂.

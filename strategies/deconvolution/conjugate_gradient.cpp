@@ -168,7 +168,13 @@ class Cgls : public KrylovBase {
     for (int k = 1; k <= count; ++k) {
       const Eigen::VectorXd q = op().apply(p);
       const double qq = q.squaredNorm();
-      if (!(qq > 0.0)) return;
+      if (!(qq > 0.0) || !std::isfinite(qq)) {  // ||Ap||^2 under- or overflowed: stop with x so far, as an issue
+        ScanPoint pt = point(k - 1, x, r.norm(), matvecs, true);
+        pt.issue = "cgls: ||A p||^2 = " + std::to_string(qq) + " at iteration " + std::to_string(k) +
+                   " (under- or overflow; the operator or data are badly scaled)";
+        visit(pt);
+        return;
+      }
       const double alpha = gamma / qq;
       x += alpha * p;
       r -= alpha * q;

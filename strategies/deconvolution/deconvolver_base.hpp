@@ -1,8 +1,10 @@
 #pragma once
 // Shared plumbing of the built-in deconvolvers: the parameter rule, timing of setup and solve, input checks,
-// and the final NaN/Inf guard. A strategy implements its setup, its fixed-parameter solve and its scan.
+// the scaling of badly scaled operators, and the final guard (an empty or non-finite x is never `converged`).
+// A strategy implements its setup, its fixed-parameter solve and its scan.
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "core/closure/deconvolver.hpp"
@@ -30,7 +32,19 @@ class DeconvolverBase : public Deconvolver {
   void setup(const ForwardOperator& a) final {
     const auto t0 = std::chrono::steady_clock::now();
     a_ = &a;
-    do_setup(a);
+    scaled_.reset();
+    scale_exponent_ = 0;
+    if (scale_invariant()) {
+      // A = 2^k A' with max|A'| in [1/2, 1): the strategy solves A' x' = b and x = 2^-k x' (exact powers of
+      // two, so a well-scaled operator (|k| <= 32) is used as given, bit for bit).
+      const int k = max_entry_exponent(a);
+      if (std::abs(k) > 32) {
+        scaled_ = scaled_operator(a, -k);
+        scale_exponent_ = k;
+        a_ = &*scaled_;
+      }
+    }
+    do_setup(*a_);
     setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
@@ -38,13 +52,24 @@ class DeconvolverBase : public Deconvolver {
     require_setup();
     check_solve_input(*a_, b, noise_level);
     const auto t0 = std::chrono::steady_clock::now();
-    DeconvolutionResult r =
-        rule_.rule == ParameterRule::fixed ? solve_fixed(b) : choose_by_rule(*this, b, rule_.rule, noise_level, rule_.safety);
+    DeconvolutionResult r;
+    if (rule_.rule == ParameterRule::fixed) {
+      const int m = data_exponent(b);
+      r = solve_fixed(m == 0 ? b : times_power_of_two(b, -m));
+      unscale(r, m);
+    } else {
+      r = choose_by_rule(*this, b, rule_.rule, noise_level, rule_.safety);  // through scan(): already unscaled
+    }
     r.stats.rule = to_string(rule_.rule);
     r.stats.parameter_name = parameter_name_;
     r.cost.setup_seconds = setup_seconds_;
     r.cost.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!r.x.allFinite()) {
+    if (r.x.size() != a_->cols()) {
+      r.status = DeconvolutionStatus::numerical_issue;
+      r.stats.message = name_ + " returned a solution of size " + std::to_string(r.x.size()) + " for " +
+                        std::to_string(a_->cols()) + " unknowns" + (r.stats.message.empty() ? "" : "; " + r.stats.message);
+      r.x = Eigen::VectorXd::Zero(a_->cols());
+    } else if (!r.x.allFinite()) {
       r.status = DeconvolutionStatus::numerical_issue;
       r.stats.message = "non-finite entries in the solution" + (r.stats.message.empty() ? "" : "; " + r.stats.message);
     }
@@ -54,7 +79,17 @@ class DeconvolverBase : public Deconvolver {
   void scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const final {
     require_setup();
     check_solve_input(*a_, b, 0.0);
-    do_scan(b, visit);
+    const int m = data_exponent(b), xs = m - scale_exponent_;  // x = 2^xs x', r = 2^m r'
+    if (m == 0 && scale_exponent_ == 0) return do_scan(b, visit);
+    do_scan(m == 0 ? b : times_power_of_two(b, -m), [&](const ScanPoint& p) {  // members of the original problem
+      ScanPoint q = p;
+      q.parameter = unscale_parameter(p.parameter);
+      q.residual_norm = std::ldexp(p.residual_norm, m);
+      q.solution_norm = std::ldexp(p.solution_norm, xs);
+      if (p.gcv >= 0) q.gcv = std::ldexp(p.gcv, 2 * m);
+      q.solution = [&p, xs] { return times_power_of_two(p.solution(), xs); };
+      return visit(q);
+    });
   }
 
  protected:
@@ -62,7 +97,13 @@ class DeconvolverBase : public Deconvolver {
   virtual DeconvolutionResult solve_fixed(const Eigen::VectorXd& b) const = 0;
   virtual void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const = 0;
 
-  const ForwardOperator& op() const { return *a_; }
+  const ForwardOperator& op() const { return *a_; }  // the (possibly rescaled) operator the strategy solves with
+  // False for a method whose answer is not invariant under A -> cA (the Landweber series (4.3) assumes A ~ I).
+  virtual bool scale_invariant() const { return true; }
+  // op() = 2^-k A: a parameter given for A is converted with k (e.g. Tikhonov's alpha by 4^-k), and a scanned
+  // one back with unscale_parameter.
+  int scale_exponent() const { return scale_exponent_; }
+  virtual double unscale_parameter(double p) const { return p; }
   const RuleConfig& rule() const { return rule_; }
   // Fills the norms of a fixed-parameter result from its x (one more product with A).
   void finish_fixed(DeconvolutionResult& r, const Eigen::VectorXd& b, double parameter) const {
@@ -76,10 +117,84 @@ class DeconvolverBase : public Deconvolver {
   void require_setup() const {
     if (!a_) throw ConfigError("", name_ + ": solve() called before setup(A)");
   }
+  static int max_entry_exponent(const ForwardOperator& a) {
+    auto exponent = [](const Eigen::MatrixXd& m) {
+      int e = 0;
+      if (m.size() > 0) std::frexp(m.cwiseAbs().maxCoeff(), &e);
+      return e;
+    };
+    switch (a.storage()) {
+      case OperatorStorage::dense: return exponent(a.dense());
+      case OperatorStorage::kronecker: return exponent(a.factor_x()) + exponent(a.factor_y());
+      case OperatorStorage::sparse: {
+        int e = 0;
+        if (a.sparse().nonZeros() > 0)
+          std::frexp(Eigen::Map<const Eigen::VectorXd>(a.sparse().valuePtr(), a.sparse().nonZeros()).cwiseAbs().maxCoeff(), &e);
+        return e;
+      }
+    }
+    return 0;
+  }
+  static Eigen::MatrixXd times_power_of_two(const Eigen::MatrixXd& m, int k) {
+    return m.unaryExpr([k](double v) { return std::ldexp(v, k); });
+  }
+  static Eigen::VectorXd times_power_of_two(const Eigen::VectorXd& v, int k) {
+    return v.unaryExpr([k](double e) { return std::ldexp(e, k); });
+  }
+  // Data b = 2^m b' with max|b'| in [1/2, 1) when b is badly scaled (|m| > 32; squares of 1e-200 underflow),
+  // else m = 0 (b used as given). Every method is linear in b, so x scales with it.
+  static int data_exponent(const Eigen::VectorXd& b) {
+    if (b.size() == 0) return 0;
+    const double top = b.cwiseAbs().maxCoeff();
+    if (!(top > 0) || !std::isfinite(top)) return 0;
+    int e = 0;
+    std::frexp(top, &e);
+    return std::abs(e) > 32 ? e : 0;
+  }
+  static ForwardOperator scaled_operator(const ForwardOperator& a, int k) {
+    ForwardOperator s;
+    switch (a.storage()) {
+      case OperatorStorage::dense: s = ForwardOperator::from_dense(times_power_of_two(a.dense(), k)); break;
+      case OperatorStorage::kronecker: {
+        int ex = 0, ey = 0;
+        if (a.factor_x().size() > 0) std::frexp(a.factor_x().cwiseAbs().maxCoeff(), &ex);
+        ey = -k - ex;
+        s = ForwardOperator::from_kronecker(times_power_of_two(a.factor_y(), -ey), times_power_of_two(a.factor_x(), -ex));
+        break;
+      }
+      case OperatorStorage::sparse: {
+        Eigen::SparseMatrix<double> m = a.sparse();
+        for (Eigen::Index i = 0; i < m.nonZeros(); ++i) m.valuePtr()[i] = std::ldexp(m.valuePtr()[i], k);
+        s = ForwardOperator::from_sparse(std::move(m));
+        break;
+      }
+    }
+    s.data_mesh = a.data_mesh;
+    s.solution_mesh = a.solution_mesh;
+    s.dimension = a.dimension;
+    return s;
+  }
+  // A fixed-parameter result of op() x' = 2^-m b back to A x = b: x = 2^(m-k) x', residual 2^m.
+  void unscale(DeconvolutionResult& r, int m) const {
+    if (scale_exponent_ == 0 && m == 0) return;
+    const int xs = m - scale_exponent_;
+    r.x = times_power_of_two(r.x, xs);
+    r.stats.solution_norm = std::ldexp(r.stats.solution_norm, xs);
+    r.stats.residual_norm = std::ldexp(r.stats.residual_norm, m);
+    r.stats.chosen_parameter = unscale_parameter(r.stats.chosen_parameter);
+    std::string note;
+    if (scale_exponent_ != 0) note = "operator scaled by 2^" + std::to_string(-scale_exponent_);
+    if (m != 0) note += (note.empty() ? "" : ", ") + std::string("data scaled by 2^") + std::to_string(-m);
+    note += " for the solve";
+    r.stats.message = r.stats.message.empty() ? note : r.stats.message + "; " + note;
+  }
+
   std::string name_;
   RuleConfig rule_;
   std::string parameter_name_;
   const ForwardOperator* a_ = nullptr;
+  std::optional<ForwardOperator> scaled_;  // set when the given operator is badly scaled
+  int scale_exponent_ = 0;
   double setup_seconds_ = 0.0;
 };
 

@@ -18,10 +18,12 @@ class LandweberRelaxed : public DeconvolverBase {
     const double norm = a.norm2_estimate();
     if (!(norm > 0)) throw ConfigError("", "landweber_relaxed: the operator is zero");
     if (omega_given_ > 0) {
-      if (omega_given_ * norm * norm >= 2.0)
+      const double omega = std::ldexp(omega_given_, 2 * scale_exponent());  // omega for op() = 2^-k A
+      if (!(omega * norm * norm < 2.0))
         throw ConfigError("/omega", "omega = " + std::to_string(omega_given_) + " >= 2/||A||^2 = " +
-                                        std::to_string(2.0 / (norm * norm)) + ": the iteration would diverge");
-      omega_ = omega_given_;
+                                        std::to_string(std::ldexp(2.0 / (norm * norm), 2 * scale_exponent())) +
+                                        ": the iteration would diverge");
+      omega_ = omega;
     } else {
       omega_ = 1.0 / (norm * norm);
     }

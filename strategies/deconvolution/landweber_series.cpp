@@ -21,6 +21,7 @@ class LandweberSeries : public DeconvolverBase {
         report_residual_(report_residual) {}
 
  protected:
+  bool scale_invariant() const override { return false; }  // the series (4.3) is for A ~ I, used as given
   void do_setup(const ForwardOperator& a) override {
     if (!a.is_square())
       throw ConfigError("", "landweber (the series (4.3)/(4.9)) needs a square operator (coarse_coarse or fine_fine); "

@@ -9,6 +9,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/SparseLU>
+#include <cstdio>
 #include <memory>
 #include <unsupported/Eigen/KroneckerProduct>
 
@@ -149,20 +150,33 @@ class Tikhonov : public DeconvolverBase {
 
   DeconvolutionResult solve_fixed(const Eigen::VectorXd& b) const override {
     DeconvolutionResult r;
+    const double alpha = std::ldexp(alpha_, -(paper_ ? 1 : 2) * scale_exponent());  // alpha for op() = 2^-k A
+    std::string issue;
     if (backend_ == Backend::spectral) {
       const Eigen::VectorXd beta = basis_.coefficients(b);
-      std::string issue;
-      r.x = spectral_solution(beta, alpha_, issue);
+      r.x = spectral_solution(beta, alpha, issue);
       r.cost.matvecs = 2;
-      set_issue(r, issue);
     } else {
-      std::string issue;
-      r.x = factored_solution(b, alpha_, issue);
+      r.x = factored_solution(b, alpha, issue);
       r.cost.matvecs = paper_ ? 0 : 1;
-      set_issue(r, issue);
     }
-    finish_fixed(r, b, alpha_);
+    // An alpha that dwarfs ||A||^2 (||A|| in the paper form) gives x ~ A'b/alpha ~ 0 and leaves the residual at
+    // ||b||: a wrong scale, not a solution (alpha is absolute; the rules scan relative to ||A||^2).
+    if (issue.empty() && !(alpha <= 1e12 * scale_))
+      issue = "tikhonov: alpha = " + fmt(alpha_) + " is " + fmt(alpha / scale_) + " times " +
+              (paper_ ? "||A||" : "||A||^2") + " (= " + fmt(std::ldexp(scale_, (paper_ ? 1 : 2) * scale_exponent())) +
+              "): the regularization swamps the operator and x ~ 0; choose alpha on the scale of the operator or a rule";
+    set_issue(r, issue);
+    finish_fixed(r, b, alpha);
     return r;
+  }
+  double unscale_parameter(double alpha) const override {
+    return std::ldexp(alpha, (paper_ ? 1 : 2) * scale_exponent());
+  }
+  static std::string fmt(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
   }
 
   void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const override {
@@ -300,6 +314,9 @@ ParamSchema tikhonov_schema() {
 }
 
 std::unique_ptr<Deconvolver> make_tikhonov(const json& p) {
+  if (!(p.at("alpha_min").get<double>() < p.at("alpha_max").get<double>()))
+    throw ConfigError("/alpha_min", "alpha_min = " + p.at("alpha_min").dump() + " must be below alpha_max = " +
+                                        p.at("alpha_max").dump());
   const std::string reg = p.at("regularizer").get<std::string>();
   const std::string be = p.at("backend").get<std::string>();
   const auto backend = be == "spectral" ? Tikhonov::Backend::spectral

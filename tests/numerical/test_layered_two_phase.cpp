@@ -197,7 +197,7 @@ TEST(LayeredDirectSph, SteadyProfileMatchesThePiecewiseParabolasAndInterfacesSta
     // Interfaces stay put: at Re ~ 1e-5 the rows only slide along x, and the unlike-pair repulsion of (7.1)
     // moves them by ~1e-9 ε' in this time (measured); no particle leaves its phase's rows.
     EXPECT_EQ(r.strayed, 0);
-    EXPECT_LT(r.max_shift_dx, 0.01);
+    EXPECT_LT(r.max_shift_dx, 1e-7);  // measured 9.7e-10 (arithmetic) and 1.07e-9 (harmonic) eps'
     // The error is dominated by the zero-velocity wall (5.3), which shifts the effective walls by about one
     // spacing and overpredicts the flow by about 2ε'/W (DESIGN.md §6; W = L = 1): 6.25 % at n_y = 32. The layered
     // profile must be within that (measured: max 5.4 %, peak +3.3 % arithmetic / +5.1 % harmonic; both fall

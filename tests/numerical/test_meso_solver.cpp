@@ -51,6 +51,10 @@ KolmogorovRun run_kolmogorov(int order, const std::string& quadrature, double sp
 
 }  // namespace
 
+// The closure's part of the error is the same at every order to 1.7e-9 (measured; printed below), the SPH
+// Laplacian's 1.04 % common to all: 1e-8 leaves a 6x margin.
+constexpr double kOrderRatioTolerance = 1e-8;
+
 TEST(ReducedModel, KolmogorovFollowsTheLandweberPrediction) {
   // The SPH viscous operator on the n_y = 64 lattice misses the continuum one by O((κ ε')²) ≈ 1 % at κ = 4π;
   // that factor is common to every order, so the ratios between orders test the closure alone.
@@ -61,9 +65,10 @@ TEST(ReducedModel, KolmogorovFollowsTheLandweberPrediction) {
     const double rel = r.amplitude_ratio / r.predicted;
     std::cout << "order " << n << ": amplitude ratio " << r.amplitude_ratio << ", predicted " << r.predicted
               << ", relative difference " << rel - 1 << "\n";
-    EXPECT_NEAR(rel, 1.0, 0.02);  // measured 1.04 %
+    EXPECT_NEAR(rel, 1.0, 0.015);  // measured 1.04 %
     if (n == 0) first = rel;
-    EXPECT_NEAR(rel / first, 1.0, 1e-4) << "order " << n;  // measured identical to 1e-7
+    std::printf("order %d: ratio to order 0's relative difference - 1 = %.3g\n", n, rel / first - 1.0);
+    EXPECT_NEAR(rel / first, 1.0, kOrderRatioTolerance) << "order " << n;
   }
 }
 

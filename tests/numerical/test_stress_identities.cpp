@@ -91,8 +91,8 @@ TEST(InteractionStress, MomentumBalanceFromDirectSphSnapshots) {
     scale = std::max(scale, std::abs(dmdt[n]));
   }
   ASSERT_GT(scale, 0.1);  // the flow is accelerating: the test is not 0 = 0
-  // Tolerance: the y-stencil error (h/η)⁴ ≈ 2.4e-4 times an O(1) constant; measured 6e-5.
-  EXPECT_LT(worst / scale, 5e-4) << "balance residual " << worst << " vs dM/dt " << scale;
+  // The y-stencil error (h/η)⁴ ≈ 2.4e-4 times an O(1) constant; measured 6.25e-5 (deterministic run).
+  EXPECT_LT(worst / scale, 1e-4) << "balance residual " << worst << " vs dM/dt " << scale;
   RecordProperty("relative_residual", std::to_string(worst / scale));
   std::cout << "momentum balance: max residual / max dM/dt = " << worst / scale << "\n";
 }

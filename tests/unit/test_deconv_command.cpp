@@ -81,3 +81,37 @@ TEST(DeconvCommand, BadInputExitsNonZeroWithAMessage) {
     EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
   }
 }
+
+TEST(DeconvCommand, IssueFourteenBigMatrixIsSolvedNotEmpty) {
+  // Issue 14 item 1: cgls on diag(1e300, 2e300) returned a 0 x 1 "solution" marked converged (and the
+  // relative error then read past it: SIGSEGV). Now the operator is rescaled and x = (1e-300, 5e-301).
+  const std::string d = dir();
+  std::ofstream(d + "/big.mtx") << "%%MatrixMarket matrix array real general\n2 2\n1e300\n0\n0\n2e300\n";
+  std::ofstream(d + "/b2.mtx") << "%%MatrixMarket matrix array real general\n2 1\n1\n1\n";
+  for (const std::string method : {"cgls", "tikhonov", "landweber_relaxed", "cg", "tsvd"}) {
+    SCOPED_TRACE(method);
+    std::vector<std::string> args = {"--matrix", d + "/big.mtx", "--rhs", d + "/b2.mtx", "--x-true", d + "/b2.mtx",
+                                     "--method", method};
+    if (method == "landweber_relaxed") args.insert(args.end(), {"--param", "iterations=200"});
+    if (method == "tsvd") args.insert(args.end(), {"--param", "k=2"});
+    const Captured c = run(args);
+    ASSERT_EQ(c.rc, 0) << c.err;
+    const json j = json::parse(c.out);
+    EXPECT_EQ(j["status"], "converged");
+    ASSERT_EQ(j["x"].size(), 2u);
+    EXPECT_NEAR(j["x"][0].get<double>(), 1e-300, 1e-312);
+    EXPECT_NEAR(j["x"][1].get<double>(), 5e-301, 1e-312);
+  }
+}
+
+TEST(DeconvCommand, NumericalIssueExitsOneAndStrictOptions) {
+  const std::string d = dir();
+  std::ofstream(d + "/tiny.mtx") << "%%MatrixMarket matrix array real general\n2 2\n1e-310\n0\n0\n2e-310\n";
+  std::ofstream(d + "/b2.mtx") << "%%MatrixMarket matrix array real general\n2 1\n1\n1\n";
+  const Captured c = run({"--matrix", d + "/tiny.mtx", "--rhs", d + "/b2.mtx", "--method", "tikhonov"});
+  EXPECT_EQ(c.rc, 1);
+  EXPECT_EQ(json::parse(c.out)["status"], "numerical_issue");
+  EXPECT_NE(c.err.find("swamps"), std::string::npos) << c.err;
+  EXPECT_EQ(run({"--matrix", d + "/tiny.mtx", "--rhs", d + "/b2.mtx", "--method", "cgls", "--noise-level", "0x10"}).rc, 2);
+  EXPECT_EQ(run({"--matrix", d + "/tiny.mtx", "--rhs", d + "/b2.mtx", "--method", "cgls", "--param", "name=tsvd"}).rc, 2);
+}

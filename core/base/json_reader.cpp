@@ -1,0 +1,79 @@
+#include "core/base/json_reader.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "core/base/errors.hpp"
+
+namespace closurelab {
+
+namespace {
+
+struct Frame {
+  bool object = false;
+  std::set<std::string> keys;
+  std::string key;  // the member being parsed (objects)
+};
+
+std::string path_of(const std::vector<Frame>& frames) {
+  std::string p;
+  for (const auto& f : frames) p += "/" + (f.object ? f.key : std::string("*"));
+  return p;
+}
+
+}  // namespace
+
+json parse_json_guarded(const std::string& text, const std::string& source) {
+  std::vector<Frame> frames;
+  auto callback = [&](int depth, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        if (depth >= kJsonMaxDepth)
+          throw ConfigError(path_of(frames), "'" + source + "' is nested more than " + std::to_string(kJsonMaxDepth) +
+                                                 " levels deep (refused before copying)");
+        frames.push_back(Frame{event == json::parse_event_t::object_start, {}, {}});
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        if (!frames.empty()) frames.pop_back();
+        break;
+      case json::parse_event_t::key: {
+        if (frames.empty()) break;
+        Frame& f = frames.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second)
+          throw ConfigError(path_of(frames), "duplicate key '" + f.key + "' in '" + source + "'");
+        break;
+      }
+      case json::parse_event_t::value: break;
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, callback);
+  } catch (const json::exception& e) {  // syntax errors, and numbers that overflow (1e999)
+    throw ConfigError("", "malformed JSON in '" + source + "': " + e.what());
+  }
+}
+
+json read_json_file_guarded(const std::string& file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw ConfigError("", "cannot open '" + file + "' (no such file)");
+  if (!std::filesystem::is_regular_file(file, ec)) throw ConfigError("", "cannot open '" + file + "': not a regular file");
+  const auto bytes = std::filesystem::file_size(file, ec);
+  if (ec) throw ConfigError("", "cannot open '" + file + "': " + ec.message());
+  if (bytes > static_cast<std::uintmax_t>(kJsonMaxBytes))
+    throw ConfigError("", "'" + file + "' has " + std::to_string(bytes) + " bytes, above the JSON reader's limit of " +
+                              std::to_string(kJsonMaxBytes));
+  std::ifstream in(file);
+  if (!in) throw ConfigError("", "cannot open '" + file + "'");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_json_guarded(ss.str(), file);
+}
+
+}  // namespace closurelab

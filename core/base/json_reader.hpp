@@ -1,0 +1,21 @@
+#pragma once
+// Guarded JSON parsing for files a user hands to closurelab (experiment specs, stored cells): the text must be
+// a regular file of bounded size, nested at most kJsonMaxDepth levels (a deeper document would overflow the
+// stack in the recursive copies that follow; it is refused while parsing, before any copy), and an object may
+// not repeat a key (the last one would silently win). Each refusal is a ConfigError naming the JSON path.
+#include <string>
+
+#include "core/base/params.hpp"
+
+namespace closurelab {
+
+inline constexpr int kJsonMaxDepth = 64;
+inline constexpr long kJsonMaxBytes = 64L << 20;  // 64 MiB
+
+// Parses `text`; `source` names it in messages.
+json parse_json_guarded(const std::string& text, const std::string& source);
+
+// Reads `file` (a regular file of at most kJsonMaxBytes) and parses it with parse_json_guarded.
+json read_json_file_guarded(const std::string& file);
+
+}  // namespace closurelab

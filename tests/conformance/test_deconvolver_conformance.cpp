@@ -1,16 +1,12 @@
 // One generic checker run over every registered deconvolver (DESIGN.md §2): registering a strategy is enough
-// to have it tested here.
+// to have it tested here. The checks live in strategies/conformance/deconvolver_conformance.* (GoogleTest-free),
+// so that a user's project runs the very same checks on its own strategy (examples/custom_deconvolver/).
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <random>
-
-#include "core/closure/deconvolver.hpp"
 #include "core/base/errors.hpp"
-#include "core/closure/forward_operator.hpp"
-#include "core/closure/parameter_choice.hpp"
 #include "core/base/registry.hpp"
-#include "strategies/kernels/gaussian_kernel.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "strategies/conformance/deconvolver_conformance.hpp"
 
 using namespace closurelab;
 
@@ -22,140 +18,59 @@ std::vector<std::string> deconvolver_names() {
   return names;
 }
 
-struct Problem {
-  ForwardOperator a;
-  Eigen::VectorXd x, b;
-};
-// η = 1.5 h on 30 nodes: κ ≈ 1e2, SPD; x a smooth bump.
-Problem make_problem(Discretization d = Discretization::coarse_coarse) {
-  const UniformMesh1D c = UniformMesh1D::cell_centred(0, 1, 30, false), f = UniformMesh1D::cell_centred(0, 1, 60, false);
-  const GaussianKernel k(1.5 * c.spacing);
-  Problem p{make_averaging_operator_1d(k, c, f, d), {}, {}};
-  const UniformMesh1D& s = p.a.solution_mesh->x;
-  p.x.resize(s.count);
-  for (int i = 0; i < s.count; ++i) p.x(i) = std::exp(-std::pow((s.node(i) - 0.45) / 0.15, 2));
-  p.b = p.a.apply(p.x);
-  return p;
-}
-
-bool supports_rule(const EntryInfo& info, const std::string& rule) {
-  for (const auto& p : info.params)
-    if (p.name == "rule") return std::find(p.choices.begin(), p.choices.end(), rule) != p.choices.end();
-  return false;
-}
-
 class DeconvolverConformance : public ::testing::TestWithParam<std::string> {
  protected:
-  const Family<Deconvolver>& family() const { return builtin_registry().deconvolvers; }
-  std::unique_ptr<Deconvolver> make(json extra = json::object()) const {
-    extra["name"] = GetParam();
-    return family().create(extra, "/method");
+  void expect_conforms(const std::string& check) const {
+    const ConformanceReport r = run_deconvolver_conformance(builtin_registry(), GetParam(), check);
+    ASSERT_EQ(r.checks.size(), 1u) << check;
+    EXPECT_TRUE(r.ok()) << r.to_string();
   }
 };
 
 }  // namespace
 
-TEST_P(DeconvolverConformance, SchemaIsCompleteAndDefaultsResolve) {
-  const EntryInfo& info = family().info(GetParam());
-  EXPECT_FALSE(info.description.empty());
-  ASSERT_TRUE(supports_rule(info, "fixed")) << "every method offers a fixed parameter";
-  EXPECT_TRUE(supports_rule(info, "discrepancy")) << "every method offers the discrepancy principle";
-  for (const auto& p : info.params) {
-    EXPECT_FALSE(p.description.empty()) << p.name;
-    EXPECT_FALSE(p.default_value.is_null()) << p.name << ": every parameter has a default";
-  }
-  const json r = family().resolve(json{{"name", GetParam()}}, "/method");
-  for (const auto& p : info.params) EXPECT_TRUE(r.contains(p.name)) << "resolved parameters echo " << p.name;
-  EXPECT_THROW(make(json{{"no_such_parameter", 1}}), ConfigError);
-}
-
+TEST_P(DeconvolverConformance, SchemaIsCompleteAndDefaultsResolve) { expect_conforms("schema_is_complete_and_defaults_resolve"); }
 TEST_P(DeconvolverConformance, FixedSolveIsFiniteConsistentAndRepeatable) {
-  const Problem p = make_problem();
-  auto d = make();
-  EXPECT_EQ(d->name(), GetParam());
-  d->setup(p.a);
-  const DeconvolutionResult r = d->solve(p.b);
-  ASSERT_EQ(r.x.size(), p.a.cols());
-  EXPECT_TRUE(r.x.allFinite());
-  EXPECT_NE(r.status, DeconvolutionStatus::numerical_issue) << r.stats.message;
-  // Reported norms are the true ones (to rounding).
-  EXPECT_NEAR(r.stats.residual_norm, (p.b - p.a.apply(r.x)).norm(), 1e-10 * p.b.norm());
-  EXPECT_NEAR(r.stats.solution_norm, r.x.norm(), 1e-12 * r.x.norm());
-  EXPECT_FALSE(r.stats.parameter_name.empty());
-  EXPECT_EQ(r.stats.rule, "fixed");
-  EXPECT_GE(r.cost.matvecs, 0);
-  EXPECT_GE(r.cost.setup_seconds, 0.0);
-  EXPECT_GE(r.cost.solve_seconds, 0.0);
-  // The default parameter regularizes sensibly on this κ ≈ 1e2 problem: the error is below 30 %.
-  EXPECT_LT((r.x - p.x).norm(), 0.3 * p.x.norm());
-  // No hidden state: a second solve gives the same x.
-  EXPECT_EQ((d->solve(p.b).x - r.x).norm(), 0.0);
-  const json j = r.to_json();
-  EXPECT_TRUE(j.contains("status") && j.contains("stats") && j.contains("cost"));
+  expect_conforms("fixed_solve_is_finite_consistent_and_repeatable");
 }
-
 TEST_P(DeconvolverConformance, ScanReportsTrueResidualsAndStopsWhenAsked) {
-  const Problem p = make_problem();
-  auto d = make();
-  d->setup(p.a);
-  int visited = 0;
-  bool saw_last = false;
-  d->scan(p.b, [&](const ScanPoint& s) {
-    ++visited;
-    const Eigen::VectorXd x = s.solution();
-    EXPECT_TRUE(x.allFinite());
-    EXPECT_NEAR(s.residual_norm, (p.b - p.a.apply(x)).norm(), 1e-9 * p.b.norm()) << "parameter " << s.parameter;
-    EXPECT_NEAR(s.solution_norm, x.norm(), 1e-9 * std::max(1.0, x.norm())) << "parameter " << s.parameter;
-    saw_last = s.last;
-    return visited < 25;
-  });
-  EXPECT_GE(visited, 1);
-  EXPECT_TRUE(visited == 25 || saw_last) << "the scan stopped when asked or marked its last member";
+  expect_conforms("scan_reports_true_residuals_and_stops_when_asked");
 }
-
 TEST_P(DeconvolverConformance, DiscrepancyPrincipleMeetsTauDeltaOrSaysSo) {
-  const Problem p = make_problem();
-  std::mt19937_64 rng(7);
-  std::normal_distribution<double> n(0, 1);
-  Eigen::VectorXd e(p.b.size());
-  for (auto& v : e) v = n(rng);
-  e *= 1e-2 * p.b.norm() / e.norm();
-  auto d = make(json{{"rule", "discrepancy"}});
-  d->setup(p.a);
-  const DeconvolutionResult r = d->solve(p.b + e, e.norm());
-  EXPECT_TRUE(r.x.allFinite());
-  EXPECT_EQ(r.stats.rule, "discrepancy");
-  if (r.status == DeconvolutionStatus::converged) EXPECT_LE(r.stats.residual_norm, 1.01 * e.norm() * (1 + 1e-12));
-  else EXPECT_FALSE(r.stats.message.empty());
-  EXPECT_LT((r.x - p.x).norm(), 0.5 * p.x.norm());
+  expect_conforms("discrepancy_principle_meets_tau_delta_or_says_so");
 }
-
 TEST_P(DeconvolverConformance, RectangularOperatorIsHandledOrRefusedClearly) {
-  const Problem p = make_problem(Discretization::coarse_fine);
-  auto d = make();
-  try {
-    d->setup(p.a);
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("square"), std::string::npos) << e.what();
-    return;
-  }
-  const DeconvolutionResult r = d->solve(p.b);
-  EXPECT_EQ(r.x.size(), p.a.cols());
-  EXPECT_TRUE(r.x.allFinite());
-  if (r.status == DeconvolutionStatus::numerical_issue) {
-    EXPECT_FALSE(r.stats.message.empty());
-  }
+  expect_conforms("rectangular_operator_is_handled_or_refused_clearly");
 }
-
-TEST_P(DeconvolverConformance, BadDataIsAConfigError) {
-  const Problem p = make_problem();
-  auto d = make();
-  d->setup(p.a);
-  Eigen::VectorXd b = p.b;
-  b(0) = INFINITY;
-  EXPECT_THROW(d->solve(b), ConfigError);
-  EXPECT_THROW(d->solve(p.b.head(5)), ConfigError);
-}
+TEST_P(DeconvolverConformance, BadDataIsAConfigError) { expect_conforms("bad_data_is_a_config_error"); }
 
 INSTANTIATE_TEST_SUITE_P(AllRegistered, DeconvolverConformance, ::testing::ValuesIn(deconvolver_names()),
                          [](const ::testing::TestParamInfo<std::string>& i) { return i.param; });
+
+// The library itself: every check runs once, a failing strategy is reported with the check and the reason, and
+// an unknown name or check is a ConfigError.
+TEST(DeconvolverConformanceLibrary, RunsEveryCheckAndNamesUnknownOnes) {
+  const ConformanceReport r = run_deconvolver_conformance(builtin_registry(), "cgls");
+  EXPECT_EQ(r.checks, deconvolver_conformance_checks());
+  EXPECT_TRUE(r.ok()) << r.to_string();
+  EXPECT_NE(r.to_string().find("cgls bad_data_is_a_config_error: ok\n"), std::string::npos) << r.to_string();
+  EXPECT_THROW(run_deconvolver_conformance(builtin_registry(), "no_such_method"), ConfigError);
+  EXPECT_THROW(run_deconvolver_conformance(builtin_registry(), "cgls", "no_such_check"), ConfigError);
+}
+
+TEST(DeconvolverConformanceLibrary, ReportsAStrategyThatBreaksTheContract) {
+  // A strategy without the discrepancy rule and whose factory ignores its parameters fails the schema check.
+  Registry r;
+  register_builtin_strategies(r);
+  r.deconvolvers.add({"broken", "", {}}, [](const json&) { return builtin_registry().deconvolvers.create(json{{"name", "cgls"}}, "/m"); });
+  const ConformanceReport report = run_deconvolver_conformance(r, "broken");
+  EXPECT_FALSE(report.ok());
+  bool schema_failed = false, name_failed = false;
+  for (const auto& f : report.failures) {
+    schema_failed |= f.check == "schema_is_complete_and_defaults_resolve";
+    name_failed |= f.check == "fixed_solve_is_finite_consistent_and_repeatable";
+  }
+  EXPECT_TRUE(schema_failed) << report.to_string();
+  EXPECT_TRUE(name_failed) << report.to_string();
+  EXPECT_NE(report.to_string().find("FAILED"), std::string::npos);
+}

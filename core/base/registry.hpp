@@ -115,7 +115,7 @@ struct Registry {
 // registry that already holds the built-ins is left as it is.
 void register_builtin_strategies(Registry& registry);
 
-// A process-wide registry with the built-ins registered (convenience for the runner and tests).
+// A process-wide registry of the built-ins (tests, benchmarks); the command line builds its own (closurelab_main).
 const Registry& builtin_registry();
 
 }  // namespace closurelab

@@ -33,7 +33,7 @@ const char* usage_text =
     "  --noise-level d  absolute noise level ||b - b_exact||_2 for the discrepancy principle\n"
     "  --param k=v      a deconvolver parameter; v is parsed as JSON when it can be (numbers, true/false), else a string\n";
 
-Options parse(int argc, char** argv) {
+Options parse(int argc, char** argv, const Registry& registry) {
   Options o;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
@@ -74,17 +74,17 @@ Options parse(int argc, char** argv) {
   }
   if (o.matrix.empty()) throw ConfigError("--matrix", "required");
   if (o.rhs.empty()) throw ConfigError("--rhs", "required");
-  if (o.method.empty()) throw ConfigError("--method", "required; known: " + builtin_registry().deconvolvers.known_names());
+  if (o.method.empty()) throw ConfigError("--method", "required; known: " + registry.deconvolvers.known_names());
   return o;
 }
 
 }  // namespace
 
-int run_deconvolve_command(int argc, char** argv) {
+int run_deconvolve_command(int argc, char** argv, const Registry& registry) {
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
-      std::cout << usage_text << "  methods: " << builtin_registry().deconvolvers.known_names()
+      std::cout << usage_text << "  methods: " << registry.deconvolvers.known_names()
                 << " (parameters: closurelab list deconvolver)\n";
       return 0;
     }
@@ -93,11 +93,11 @@ int run_deconvolve_command(int argc, char** argv) {
       ++i;  // skip the option's value
   }
   try {
-    const Options o = parse(argc, argv);
+    const Options o = parse(argc, argv, registry);
     json config = o.params;
     config["name"] = o.method;
     json resolved;
-    auto d = builtin_registry().deconvolvers.create(config, "/method", &resolved);
+    auto d = registry.deconvolvers.create(config, "/method", &resolved);
 
     const MatrixMarketData m = read_matrix_market(o.matrix);
     const ForwardOperator a = m.coordinate ? ForwardOperator::from_sparse(m.sparse) : ForwardOperator::from_dense(m.dense);

@@ -9,6 +9,7 @@
 #include "core/io/matrix_market.hpp"
 #include "experiments/runner/deconvolve_command.hpp"
 #include "core/base/params.hpp"
+#include "core/base/registry.hpp"
 
 using namespace closurelab;
 
@@ -24,7 +25,7 @@ Captured run(std::vector<std::string> args) {
   std::stringstream out, err;
   auto* old_out = std::cout.rdbuf(out.rdbuf());
   auto* old_err = std::cerr.rdbuf(err.rdbuf());
-  const int rc = run_deconvolve_command(static_cast<int>(argv.size()), argv.data());
+  const int rc = run_deconvolve_command(static_cast<int>(argv.size()), argv.data(), builtin_registry());
   std::cout.rdbuf(old_out);
   std::cerr.rdbuf(old_err);
   return {rc, out.str(), err.str()};

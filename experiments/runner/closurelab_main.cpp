@@ -1,0 +1,189 @@
+// The command-line program of closurelab (list, run, deconvolve), as a function that a user's executable calls
+// with its own registration hook (experiments/runner/closurelab_main.hpp); the stock `closurelab` calls it
+// with none (main.cpp).
+//   closurelab list [family]
+//   closurelab run SPEC.json [--out DIR] [--jobs N] [--force]
+//   closurelab deconvolve --matrix A.mtx --rhs b.mtx [...]
+#include "experiments/runner/closurelab_main.hpp"
+
+#include <cstring>
+#include <iostream>
+#include <string>
+
+#include "build_info.hpp"
+#include "core/base/errors.hpp"
+#include "core/base/registry.hpp"
+#include "experiments/runner/deconvolve_command.hpp"
+#include "experiments/kinds/experiment_kind.hpp"
+#include "experiments/runner/runner.hpp"
+
+namespace closurelab {
+
+namespace {
+
+const char* const families = "kernel, deconvolver, quadrature, scene, experiment";
+
+void usage(std::ostream& os) {
+  os << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n"
+     << "usage:\n"
+     << "  closurelab list [FAMILY]                        families: " << families << "\n"
+     << "  closurelab run SPEC.json [--out DIR] [--jobs N] [--force]\n"
+     << "  closurelab deconvolve --matrix A.mtx --rhs b.mtx [--x-true x.mtx] --method NAME [--param k=v ...]\n"
+     << "                        [--noise-level d] [--out x.mtx]\n"
+     << "  closurelab COMMAND --help                       the usage of one command\n";
+}
+
+const char* const run_usage =
+    "usage: closurelab run SPEC.json [--out DIR] [--jobs N] [--force]\n"
+    "  Expands the experiment matrix of SPEC.json, validates every cell before running any, runs them and writes\n"
+    "  DIR/cells/<id>.json per cell and the table DIR/<name>.json. A finished cell is not run again.\n"
+    "  --out DIR   output folder (default: results); locked while the run writes\n"
+    "  --jobs N    cells run at once (default 1); the OpenMP threads are shared among them\n"
+    "  --force     recompute finished cells\n"
+    "  --help      this text\n"
+    "  Exit codes: 0 all cells ran, 1 a cell failed or a write failed, 2 bad input or the folder is in use.\n";
+
+const char* const list_usage =
+    "usage: closurelab list [FAMILY]\n"
+    "  Prints the registered strategies with their parameters (name, type, default, range: meaning).\n";
+
+bool wants_help(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i)
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) return true;
+  return false;
+}
+
+void print_params(const ParamSchema& params, const std::string& indent) {
+  for (const auto& p : params) {
+    std::cout << indent << p.name << " (" << to_string(p.type)
+              << (p.default_value.is_null() ? ", required" : ", default " + p.default_value.dump()) << ")";
+    if (p.min) std::cout << " " << (p.exclusive_min ? ">" : ">=") << " " << *p.min;
+    if (p.max) std::cout << " <= " << *p.max;
+    if (!p.choices.empty()) {
+      std::cout << " one of";
+      for (const auto& c : p.choices) std::cout << " " << c;
+    }
+    std::cout << ": " << p.description << "\n";
+  }
+}
+
+int list_command(int argc, char** argv, const Registry& reg) {
+  if (wants_help(argc, argv)) {
+    std::cout << list_usage << "  families: " << families << "\n";
+    return 0;
+  }
+  if (argc > 3) {
+    std::cerr << "error: list takes at most one FAMILY, got '" << argv[3] << "'\n" << list_usage;
+    return 2;
+  }
+  const std::string want = argc > 2 ? argv[2] : "";
+  bool any = false;
+  for (const FamilyBase* fam : reg.families()) {
+    if (!want.empty() && want != fam->family_name()) continue;
+    any = true;
+    std::cout << fam->family_name() << ":\n";
+    for (const auto& e : fam->entries()) {
+      std::cout << "  " << e.name << " - " << e.description << "\n";
+      print_params(e.params, "      ");
+    }
+  }
+  if (want.empty() || want == "experiment") {
+    any = true;
+    std::cout << "experiment:\n";
+    for (const auto& k : experiment_kinds()) {
+      std::cout << "  " << k->name() << " - " << k->description() << "\n";
+      for (const auto& s : k->sections()) {
+        std::cout << "      " << s.key << ": " << s.description;
+        if (!s.family.empty()) std::cout << " (parameters: closurelab list " << s.family << ")";
+        std::cout << "\n";
+        print_params(s.params, "          ");
+      }
+    }
+  }
+  if (!any) {
+    std::cerr << "error: unknown family '" << want << "'; known: " << families << "\n";
+    return 2;
+  }
+  return 0;
+}
+
+int run_command(int argc, char** argv, const Registry& registry) {
+  if (wants_help(argc, argv)) {
+    std::cout << run_usage;
+    return 0;
+  }
+  RunOptions opt;
+  std::string spec_file;
+  for (int i = 0; i < argc; ++i) opt.command_line.append(i ? " " : "").append(argv[i]);
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto need = [&](const char* what) -> std::string {
+      if (i + 1 >= argc) throw ConfigError("", std::string("option ") + a + " needs " + what);
+      return argv[++i];
+    };
+    if (a == "--out") {
+      opt.out_dir = need("a folder");
+      if (opt.out_dir.empty()) throw ConfigError("", "--out needs a folder name, got ''");
+    } else if (a == "--jobs") {
+      const std::string v = need("a positive integer");
+      std::size_t used = 0;
+      try {
+        opt.jobs = std::stoi(v, &used);
+      } catch (...) {
+        opt.jobs = 0;
+      }
+      if (opt.jobs < 1 || used != v.size()) throw ConfigError("", "--jobs needs a positive integer, got '" + v + "'");
+    } else if (a == "--force") {
+      opt.force = true;
+    } else if (!a.empty() && a[0] == '-') {
+      throw ConfigError("", "unknown option '" + a + "'; valid: --out, --jobs, --force, --help");
+    } else if (spec_file.empty()) {
+      spec_file = a;
+    } else {
+      throw ConfigError("", "more than one spec file given ('" + spec_file + "', '" + a + "')");
+    }
+  }
+  if (spec_file.empty()) throw ConfigError("", "run needs a SPEC.json");
+  opt.spec_file = spec_file;
+  const json spec = read_json_file(spec_file);
+  return run_experiment(spec, registry, opt);
+}
+
+}  // namespace
+
+int closurelab_main(int argc, char** argv, const UserRegistration& register_user) {
+  if (argc < 2) {
+    usage(std::cerr);
+    return 2;
+  }
+  const std::string cmd = argv[1];
+  try {
+    // One registry per process: the built-ins, then the user's entries (a name registered twice is a
+    // std::logic_error naming it, exit 1).
+    Registry registry;
+    register_builtin_strategies(registry);
+    if (register_user) register_user(registry);
+    if (cmd == "list") return list_command(argc, argv, registry);
+    if (cmd == "run") return run_command(argc, argv, registry);
+    if (cmd == "deconvolve") return run_deconvolve_command(argc, argv, registry);
+    if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+      usage(std::cout);
+      return 0;
+    }
+    if (cmd == "--version") {
+      std::cout << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n";
+      return 0;
+    }
+    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, deconvolve, --help, --version\n";
+    usage(std::cerr);
+    return 2;
+  } catch (const ConfigError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace closurelab

@@ -1,0 +1,81 @@
+// The registration hook (experiments/runner/closurelab_main.hpp): a user's executable calls closurelab_main with
+// its own entries, and list, run and deconvolve see them; a name registered twice is an error (exit 1).
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <sstream>
+
+#include "cli_run.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "experiments/runner/closurelab_main.hpp"
+
+using namespace closurelab;
+
+namespace {
+
+struct Captured {
+  int rc;
+  std::string out, err;
+};
+
+Captured run_main(std::vector<std::string> args, const UserRegistration& hook) {
+  args.insert(args.begin(), "custom_closurelab");
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  std::stringstream out, err;
+  auto* old_out = std::cout.rdbuf(out.rdbuf());
+  auto* old_err = std::cerr.rdbuf(err.rdbuf());
+  const int rc = closurelab_main(static_cast<int>(argv.size()), argv.data(), hook);
+  std::cout.rdbuf(old_out);
+  std::cerr.rdbuf(old_err);
+  return {rc, out.str(), err.str()};
+}
+
+// A user's deconvolver: CGLS under another name (the factory of a built-in, reached through the registry).
+void register_my_cgls(Registry& r) {
+  EntryInfo info = r.deconvolvers.info("cgls");
+  info.name = "my_cgls";
+  info.description = "a user's entry (cgls under another name)";
+  r.deconvolvers.add(info, [&r](const json& p) {
+    json q = p;
+    q["name"] = "cgls";
+    return r.deconvolvers.create(q, "");
+  });
+}
+
+}  // namespace
+
+TEST(UserRegistration, ListShowsTheUsersEntryBesideTheBuiltins) {
+  const Captured c = run_main({"list", "deconvolver"}, register_my_cgls);
+  EXPECT_EQ(c.rc, 0) << c.err;
+  EXPECT_NE(c.out.find("my_cgls - a user's entry"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find("tikhonov - "), std::string::npos) << c.out;
+  const Captured stock = run_main({"list", "deconvolver"}, {});
+  EXPECT_EQ(stock.out.find("my_cgls"), std::string::npos) << "the stock program has no user entries";
+}
+
+TEST(UserRegistration, ASpecRunsTheUsersEntry) {
+  const auto work = closurelab::testing::fresh_work_folder("user_registration");
+  closurelab::testing::write_text(work / "spec.json", R"({
+    "name": "user_entry", "kind": "deconvolution_stability",
+    "base": {"problem": {"name": "gaussian_averaging", "coarse_count": 16}, "noise": 0.01, "scan_best": false},
+    "cells": [{"method": {"name": "my_cgls", "rule": "discrepancy"}}]})");
+  const Captured c = run_main({"run", (work / "spec.json").string(), "--out", (work / "out").string()}, register_my_cgls);
+  EXPECT_EQ(c.rc, 0) << c.err;
+  const json table = json::parse(closurelab::testing::read_text(work / "out" / "user_entry.json"));
+  ASSERT_EQ(table.at("rows").size(), 1u);
+  EXPECT_NE(table["rows"][0].value("status", ""), "error") << table["rows"][0].dump();
+  EXPECT_EQ(table["rows"][0]["params"]["method"]["name"], "my_cgls");
+  // The stock program does not know it: an error naming the JSON path, exit 2.
+  const Captured stock = run_main({"run", (work / "spec.json").string(), "--out", (work / "out2").string()}, {});
+  EXPECT_EQ(stock.rc, 2);
+  EXPECT_NE(stock.err.find("/method"), std::string::npos) << stock.err;
+  EXPECT_NE(stock.err.find("unknown deconvolver 'my_cgls'"), std::string::npos) << stock.err;
+}
+
+TEST(UserRegistration, ANameRegisteredTwiceIsAnError) {
+  const Captured c = run_main({"list"}, [](Registry& r) { r.deconvolvers.add(r.deconvolvers.info("cgls"), nullptr); });
+  EXPECT_EQ(c.rc, 1);
+  EXPECT_NE(c.err.find("deconvolver 'cgls' is registered twice"), std::string::npos) << c.err;
+  EXPECT_EQ(c.err.back(), '\n');
+}

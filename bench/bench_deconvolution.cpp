@@ -1,4 +1,4 @@
-// Deconvolution micro-benchmarks (issue 3): setup and solve per strategy on coarse tensor meshes 16²…256²
+// Deconvolution micro-benchmarks: setup and solve per strategy on coarse tensor meshes 16²…256²
 // (Kronecker operators A = A_y ⊗ A_x, η = 2h), and fine–fine operators up to 10⁴ unknowns (Kronecker, and
 // sparse cut-off with CHOLMOD for Tikhonov with a difference regularizer). Counters: unknowns, matvecs.
 // Run: OMP_NUM_THREADS=1 closurelab_bench --benchmark_filter=Deconv

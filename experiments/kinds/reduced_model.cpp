@@ -1,4 +1,4 @@
-// Experiment kind "reduced_model" (issue 4): reduced model vs references, errors and cost in one row.
+// Experiment kind "reduced_model": reduced model vs references, errors and cost in one row.
 #include "experiments/kinds/reduced_model.hpp"
 
 #include <chrono>

@@ -1,5 +1,5 @@
 #pragma once
-// Experiment kind "deconvolution_stability": one case of the hard-case suite of issue 3 per cell.
+// Experiment kind "deconvolution_stability": one case of the hard-case suite per cell.
 #include <memory>
 
 #include "experiments/kinds/experiment_kind.hpp"

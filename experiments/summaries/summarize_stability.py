@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Summarize the deconvolution hard-case tables (issue 3) into results/stability/SUMMARY.md.
+"""Summarize the deconvolution hard-case tables into results/stability/SUMMARY.md.
 
 Usage: python3 experiments/summaries/summarize_stability.py results/stability/stability_square.json \
            results/stability/stability_coarse_fine.json results/stability/stability_rules.json \

@@ -1,5 +1,5 @@
 #pragma once
-// One case of the hard-case stability suite (issue 3): a test problem, a noise level and a deconvolver with a
+// One case of the hard-case stability suite: a test problem, a noise level and a deconvolver with a
 // parameter rule. Reports the rule's error next to the best error over the method's whole regularized family
 // (found by walking Deconvolver::scan — the same family the rule chooses from), their ratio, the condition
 // number of A, finiteness of every output, status, statistics and cost. Shared by the gtests and the

@@ -1,6 +1,6 @@
 // Every committed experiment spec (experiments/**/*.json) validates: it parses under the guarded reader
 // (depth, duplicate keys), expands, names a known kind, and every cell resolves, exactly as `closurelab run`
-// checks before it runs anything (issue 14, "Tests that bite"). A spec broken by a schema change fails here,
+// checks before it runs anything. A spec broken by a schema change fails here,
 // not hours into scripts/reproduce.sh.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// A row that is not a result says why (issue 14 item 12: nine committed no_convergence rows had no message).
+// A row that is not a result says why (nine committed no_convergence rows had no message).
 #include <gtest/gtest.h>
 
 #include "core/base/registry.hpp"

@@ -1,4 +1,4 @@
-// Tikhonov's difference regularizers C = LᵀL where they act (issue 14): on a coarse–fine operator (24 data, 72
+// Tikhonov's difference regularizers C = LᵀL where they act: on a coarse–fine operator (24 data, 72
 // unknowns) the data do not determine x, and the regularizer picks the answer. C = I picks the minimum-norm
 // one, which sags between the data nodes; a first difference prefers flat answers and a second difference
 // linear ones. A linear ramp lies in the null space of the second difference, so that regularizer recovers it

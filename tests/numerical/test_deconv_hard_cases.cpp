@@ -1,4 +1,4 @@
-// The hard-case stability suite of issue 3 as gtests, through the same run_stability_case the
+// The hard-case stability suite as gtests, through the same run_stability_case the
 // "deconvolution_stability" experiment uses (experiments/stability/*.json; table in results/stability/).
 // Problems: Gaussian averaging coarse–coarse with κ from ~1e2 to ~1e14, fine–fine (κ beyond 1e16), the
 // truncated sampled Gaussian with negative eigenvalues, and shaw / deriv2 / phillips with data made without the
@@ -74,7 +74,7 @@ TEST(DeconvHardCases, ConditionNumbersSpanTheRange) {
 }
 
 TEST(DeconvHardCases, NoNonFiniteOutputAndTheDiscrepancyPrincipleIsNearTheBestParameter) {
-  // Bound on rule error / best scanned error for the noisy cases. Factor 2 (issue 3) for tikhonov, cgls and both
+  // Bound on rule error / best scanned error for the noisy cases. Factor 2 for tikhonov, cgls and both
   // Landwebers. Measured exceptions, kept visible rather than hidden: tsvd's integer truncation index lands one
   // step early (worst 2.06, fine–fine r=2 at 1e-4), and cg's residual is not monotone, so the rule stops at its
   // first clear minimum (worst 2.09, coarse–coarse η/h=3 at 1e-1); both are bounded by 2.5 here.

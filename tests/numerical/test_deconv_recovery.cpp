@@ -1,5 +1,5 @@
 // Recovery on known fields: noise-free data of a well-posed coarse–coarse Gaussian operator are recovered to
-// <= 1e-8 by every strategy (issue 3), and the Kronecker, dense and sparse paths of one method agree.
+// <= 1e-8 by every strategy, and the Kronecker, dense and sparse paths of one method agree.
 #include <gtest/gtest.h>
 
 #include <cmath>

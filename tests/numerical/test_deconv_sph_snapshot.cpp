@@ -1,4 +1,4 @@
-// Real data for the deconvolution suite (issue 3): the Gaussian averages of a direct-SPH velocity snapshot,
+// Real data for the deconvolution suite: the Gaussian averages of a direct-SPH velocity snapshot,
 // deconvolved back to the particle rows. The averages (2.9) of an x-invariant snapshot are exactly the
 // coarse–fine operator applied to the row velocities (plus the lattice ripple), so the strategies must
 // recover the rows far better than the zero-order closure (the averages themselves) does.

@@ -1,4 +1,4 @@
-// Bad configuration and bad data give clear errors naming what is wrong (issue 3, "Bad input"), and
+// Bad configuration and bad data give clear errors naming what is wrong, and
 // operators that a method cannot handle give a clear status instead of garbage.
 #include <gtest/gtest.h>
 

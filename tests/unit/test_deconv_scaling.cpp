@@ -1,4 +1,4 @@
-// Badly scaled operators (issue 14, items 1 and 2): every method that is invariant under A -> cA solves a
+// Badly scaled operators: every method that is invariant under A -> cA solves a
 // system scaled by 1e300 or 1e-200 as well as the unscaled one, and a solution that cannot be represented
 // (or an absolute alpha that swamps the operator) is a numerical_issue with a reason, never a `converged`
 // empty or zero x.

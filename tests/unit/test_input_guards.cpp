@@ -1,4 +1,4 @@
-// Input guards of issue 14: integer parameters checked in the type they are read into (item 5), JSON nesting
+// Input guards: integer parameters checked in the type they are read into, JSON nesting
 // depth, duplicate keys and non-regular files (items 6, 8, 12), the spec's top level (items 7, 10, 12), the
 // Matrix Market reader's strictness and size checks (items 8, 12), and the allocation guard (item 8).
 #include <gtest/gtest.h>

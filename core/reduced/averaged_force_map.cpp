@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 
+#include "core/base/errors.hpp"
 #include "core/sph/sph_engine.hpp"
 #include "core/sph/sph_kernel.hpp"
 
@@ -11,41 +12,53 @@ namespace closurelab {
 namespace {
 
 // Σ_{a∈members} sign f_a^x ψ(node − q_a) as an affine map of the velocity of `rows` (lattice row → particles).
+// Two pair sweeps: at rest (the offset: the pressure part) and with every fluid particle at v_x = its row's
+// index + 1 (distinct per row); a pair's x-force is affine in v_j − v_k, so the second sweep gives each pair's
+// coefficient c_jk wherever v_j ≠ v_k (pairs within one row never differ in an x-invariant field). The column
+// of row r then collects ±c_jk (w_j − w_k) over the pairs with an end in r, w the members' signed weights.
 AveragedForceMap probe(const Scene& strip, ParticleSystem& lattice, const AveragingKernel& kernel,
                        const UniformMesh1D& nodes, const std::vector<std::int32_t>& members, double sign,
                        const std::map<long, std::vector<std::int32_t>>& rows) {
   SphEngine engine(strip, lattice);
-  // ψ(node − q_a) on the column at x = 0, the periodic images in x summed.
-  Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(nodes.count, static_cast<Eigen::Index>(members.size()));
+  // ψ(node − q_a) on the column at x = 0, the periodic images in x summed, for the members (signed).
+  std::vector<std::vector<std::pair<int, double>>> weight(lattice.size());
   const double r = kernel.support_radius();
   const UniformMesh1D x_axis{0.0, strip.box.lx, 1, true, strip.box.lx};
-  for (std::size_t m = 0; m < members.size(); ++m) {
-    const int a = members[m];
+  for (int a : members) {
     double wx = 0.0;
     for_nodes_within(x_axis, lattice.x[a], r, [&](int, double d) { wx += kernel.factor(d); });
-    for_nodes_within(nodes, lattice.y[a], r, [&](int n, double d) {
-      weights(n, static_cast<Eigen::Index>(m)) += wx * kernel.factor(d);
-    });
+    for_nodes_within(nodes, lattice.y[a], r, [&](int n, double d) { weight[a].emplace_back(n, sign * wx * kernel.factor(d)); });
   }
-  const auto averaged = [&]() {
-    std::vector<double> net(lattice.size(), 0.0);
-    for (const PairForce& p : engine.pair_forces()) {
-      net[p.j] += p.f.x();
-      net[p.k] -= p.f.x();
-    }
-    Eigen::VectorXd f(static_cast<Eigen::Index>(members.size()));
-    for (std::size_t m = 0; m < members.size(); ++m) f[static_cast<Eigen::Index>(m)] = sign * net[members[m]];
-    return Eigen::VectorXd(weights * f);
-  };
+  std::vector<int> column(lattice.size(), -1);  // the map column of each fluid particle's row
   AveragedForceMap out;
-  out.offset = averaged();
-  out.map = Eigen::MatrixXd::Zero(nodes.count, static_cast<Eigen::Index>(rows.size()));
-  Eigen::Index col = 0;
   for (const auto& [row, ids] : rows) {
-    for (int a : ids) lattice.vx[a] = 1.0;
-    out.map.col(col++) = averaged() - out.offset;
-    for (int a : ids) lattice.vx[a] = 0.0;
+    for (int a : ids) column[a] = static_cast<int>(out.rows.size());
     out.rows.emplace_back(0.0, lattice.y[ids.front()]);
+  }
+  const std::vector<PairForce> rest = engine.pair_forces();
+  out.offset = Eigen::VectorXd::Zero(nodes.count);
+  for (const PairForce& p : rest) {
+    for (const auto& [n, w] : weight[p.j]) out.offset[n] += w * p.f.x();
+    for (const auto& [n, w] : weight[p.k]) out.offset[n] -= w * p.f.x();
+  }
+  for (std::size_t a = 0; a < lattice.size(); ++a)
+    if (column[a] >= 0) lattice.vx[a] = column[a] + 1.0;
+  const std::vector<PairForce> moving = engine.pair_forces();
+  for (std::size_t a = 0; a < lattice.size(); ++a) lattice.vx[a] = 0.0;
+  if (moving.size() != rest.size()) throw NumericalError("averaged force map: the pair list changed between sweeps");
+  out.map = Eigen::MatrixXd::Zero(nodes.count, static_cast<Eigen::Index>(out.rows.size()));
+  for (std::size_t p = 0; p < rest.size(); ++p) {
+    const int j = rest[p].j, k = rest[p].k;
+    if (moving[p].j != j || moving[p].k != k) throw NumericalError("averaged force map: the pair order changed");
+    const double vj = column[j] >= 0 ? column[j] + 1.0 : 0.0, vk = column[k] >= 0 ? column[k] + 1.0 : 0.0;
+    if (vj == vk) continue;
+    const double c = (moving[p].f.x() - rest[p].f.x()) / (vj - vk);  // f_jk^x = rest + c (v_j − v_k)
+    const auto add = [&](int col, double s) {  // ∂/∂V_col of the pair's contribution, s = ∂(v_j − v_k)/∂V_col
+      for (const auto& [n, w] : weight[j]) out.map(n, col) += s * c * w;
+      for (const auto& [n, w] : weight[k]) out.map(n, col) -= s * c * w;
+    };
+    if (column[j] >= 0) add(column[j], 1.0);
+    if (column[k] >= 0) add(column[k], -1.0);
   }
   return out;
 }

@@ -2,9 +2,9 @@
 // Averaged pair forces as affine maps of the reconstruction (the reduced model's x-invariant scenes). With the
 // particles fixed on the lattice, the pressure part and the factor (μ_i+μ_j)F/(n_i n_j) of (5.1) do not change,
 // so the x-force on any particle is affine in the fluid velocities, and in an x-invariant flow those are a
-// function of y alone: Σ_{a∈S} s f_a^x ψ(node − q_a) = offset + M · V(rows). M is probed once, one fluid row at a
-// time, with the real pair forces on the narrowest strip (per unit length, like ρ̄ and F̄ (2.14)); each use then
-// costs O(nodes × rows).
+// function of y alone: Σ_{a∈S} s f_a^x ψ(node − q_a) = offset + M · V(rows). M is probed once with the real pair
+// forces on the narrowest strip (per unit length, like ρ̄ and F̄ (2.14)), in two pair sweeps; each use then costs
+// O(nodes × rows).
 //   - the wall constraint forces F_c: S = the wall particles within reach of the fluid, s = −1 (the force that
 //     holds them at rest), rows = the fluid rows within reach of a wall (DESIGN.md §6);
 //   - the force density of the exact averaged balance: S = the fluid particles, s = +1, rows = every fluid row;

@@ -93,10 +93,13 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
   } catch (const ConfigError& e) {
     throw ConfigError("/closure/deconvolver" + e.path(), e.message());  // strategies report relative paths
   }
-  try {
-    quadrature_.setup(scene, kernel, column(scene, stress_axis_), {"xy"});
-  } catch (const ConfigError& e) {
-    throw ConfigError("/quadrature" + e.path(), e.message());
+  // The force-density balance needs no stress (its divergence is exact): the quadrature is not set up.
+  if (opt_.balance != "force_density") {
+    try {
+      quadrature_.setup(scene, kernel, column(scene, stress_axis_), {"xy"});
+    } catch (const ConfigError& e) {
+      throw ConfigError("/quadrature" + e.path(), e.message());
+    }
   }
   // F̄ (2.14) and ρ̄ (2.8) of the lattice at the coarse nodes.
   AveragingRequest req;

@@ -3,7 +3,13 @@
 // and the force-density balance with evolved wall-surface nodes.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "core/averaging/averaging_kernel.hpp"
 #include "core/base/registry.hpp"
+#include "core/reduced/averaged_force_map.hpp"
+#include "core/sph/scene.hpp"
+#include "core/sph/sph_engine.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 
 using namespace closurelab;
@@ -69,4 +75,40 @@ TEST(ReducedNearWall, EvolvedWallNodesRemoveTheImposedWallValueFloor) {
   const json evolved = run_cell(kTikhonovCf);
   ASSERT_EQ(evolved.at("status"), "ok");
   EXPECT_LT(all_nodes_error(evolved), 0.01);
+}
+
+TEST(ReducedNearWall, ForceDensityMapEqualsTheDirectPairSweep) {
+  // The force density Σ_F ψ(y_n − q_a) f_a^x applied as an affine map of the row velocities (two pair sweeps at
+  // setup) against its definition from a full pair sweep of the scene's lattice carrying those velocities; both
+  // wall models (the ghost wall's β depends on position only, so the force stays affine). Only rounding parts them.
+  for (const char* walls : {"zero_velocity", "ghost_velocity"}) {
+    SCOPED_TRACE(walls);
+    const Registry& reg = builtin_registry();
+    const auto scene = reg.scenes.create(json{{"name", "poiseuille-periodic"}, {"n_y", 48}, {"wall_model", walls}}, "/scene");
+    const auto kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", scene->eta}}, "/kernel");
+    const UniformMesh1D nodes{scene->wall_lo, (scene->wall_hi - scene->wall_lo) / 10, 11, false, 0.0};
+    const AveragedForceMap map = fluid_force_density_map(*scene, *kernel, nodes);
+    Eigen::VectorXd rows(static_cast<Eigen::Index>(map.rows.size()));
+    for (Eigen::Index r = 0; r < rows.size(); ++r) rows[r] = std::sin(3.0 * map.rows[r].y()) + 0.2 * std::cos(11.0 * r);
+    const Eigen::VectorXd mapped = map.apply(rows);
+
+    ParticleSystem ps = scene->make_particles();
+    for (std::size_t a = 0; a < ps.size(); ++a) {
+      if (ps.fixed[a]) continue;
+      for (Eigen::Index r = 0; r < rows.size(); ++r)
+        if (std::abs(map.rows[r].y() - ps.y[a]) < 1e-9) ps.vx[a] = rows[r];
+    }
+    SphEngine engine(*scene, ps);
+    std::vector<double> net(ps.size(), 0.0);
+    for (const PairForce& p : engine.pair_forces()) net[p.j] += p.f.x(), net[p.k] -= p.f.x();
+    Eigen::VectorXd direct = Eigen::VectorXd::Zero(nodes.count);
+    for (std::size_t a = 0; a < ps.size(); ++a) {
+      if (ps.fixed[a]) continue;
+      double wx = 0.0;  // the column at x = 0 with its periodic images
+      for (int k = -3; k <= 3; ++k) wx += kernel->factor(ps.x[a] + k * scene->box.lx);
+      for (int n = 0; n < nodes.count; ++n) direct[n] += net[a] * wx * kernel->factor(nodes.node(n) - ps.y[a]);
+    }
+    ASSERT_GT(direct.cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_LT((mapped - direct).cwiseAbs().maxCoeff(), 1e-9 * direct.cwiseAbs().maxCoeff());
+  }
 }

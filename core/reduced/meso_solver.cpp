@@ -1,6 +1,5 @@
 #include "core/reduced/meso_solver.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -130,74 +129,6 @@ void MesoSolver::hold_nodes() {
     if (held_[k]) v_[k] = held_values_[k];
 }
 
-void MesoSolver::set_oracles(MesoOracles oracles) {
-  const int n = coarse_.count;
-  if (oracles.boundary != "none" && oracles.boundary != "wall_nodes" && oracles.boundary != "wall_band")
-    throw ConfigError("/oracle/boundary", "unknown boundary oracle '" + oracles.boundary + "'; known: none, wall_nodes, wall_band");
-  if (oracles.boundary != "none" && periodic_)
-    throw ConfigError("/oracle/boundary", "the scene has no walls: there is no boundary to hold");
-  if ((oracles.closure || oracles.boundary != "none") && oracles.averaged.size() != n)
-    throw ConfigError("/oracle", "the averaged direct solution must be given at every coarse node");
-  if (oracles.boundary != "none") {
-    const double band = oracles.boundary == "wall_band" ? 3.0 * kernel_.eta() : 0.0;
-    for (int k = 0; k < n; ++k) {
-      const double y = coarse_.node(k);
-      if (y <= scene_.wall_lo + band - 1e-12 || y >= scene_.wall_hi - band + 1e-12 || k == 0 || k == n - 1) {
-        held_[k] = true;
-        held_values_[k] = oracles.averaged[k];
-      }
-    }
-  }
-  oracle_correction_.reset();
-  if (oracles.closure) {
-    const auto rows = oracles.row_y.size();
-    if (rows < 2 || oracles.row_velocity.size() != oracles.row_y.size())
-      throw ConfigError("/oracle/closure", "the direct solution's row velocities are missing");
-    const Eigen::VectorXd saved = v_;
-    v_ = oracles.averaged;
-    std::string issue;
-    if (!deconvolve(issue)) throw NumericalError("closure oracle: " + issue);
-    std::vector<Vec2> points;
-    for (Eigen::Index j = 0; j < oracles.row_y.size(); ++j) points.emplace_back(0.0, oracles.row_y[j]);
-    const Eigen::VectorXd at_rows = sample_reconstruction(points).row(0).transpose();
-    const double spacing = oracles.row_y[1] - oracles.row_y[0];
-    const UniformMesh1D row_axis{oracles.row_y[0], spacing, static_cast<int>(rows), periodic_, scene_.box.ly};
-    oracle_correction_.emplace(as_line(row_axis), 1, Eigen::VectorXd(oracles.row_velocity - at_rows));
-    v_ = saved;
-  }
-  oracles_ = std::move(oracles);
-  hold_nodes();
-  jacobian_.resize(0, 0);  // held nodes and the closure changed: probe again
-}
-
-Eigen::VectorXd MesoSolver::reported_velocity() {
-  Eigen::VectorXd v = v_;
-  if (periodic_ || walls_are_data_ || opt_.wall_node_value == "imposed" || oracles_.boundary != "none") return v;
-  std::string issue;
-  if (!deconvolve(issue)) return v;
-  // v̄ at a wall-surface node as (2.9) of the lattice column: Σ_rows φ(y − y_j) V_j / Σ_rows φ(y − y_j), every
-  // lattice row in the sums (wall rows at rest).
-  const double r = kernel_.support_radius();
-  for (int k : {0, coarse_.count - 1}) {
-    const double y = coarse_.node(k);
-    std::vector<Vec2> points;
-    std::vector<double> weights;
-    double total = 0.0;
-    for (int j = static_cast<int>(std::floor((y - r) / scene_.dx)); j <= static_cast<int>(std::ceil((y + r) / scene_.dx)); ++j) {
-      const double yj = (j + 0.5) * scene_.dx;
-      if (yj < 0.0 || yj > scene_.box.ly) continue;
-      const double w = kernel_.factor(y - yj);
-      total += w;
-      points.emplace_back(0.0, yj);
-      weights.push_back(w);
-    }
-    const Eigen::Matrix2Xd vs = sample_reconstruction(points);
-    double sum = 0.0;
-    for (std::size_t i = 0; i < points.size(); ++i) sum += weights[i] * vs(0, static_cast<Eigen::Index>(i));
-    v[k] = sum / total;
-  }
-  return v;
-}
 
 Eigen::VectorXd MesoSolver::constraint_force() {
   return constraint_map_.apply(sample_reconstruction(constraint_map_.rows).row(0).transpose());
@@ -305,72 +236,6 @@ bool MesoSolver::rate(Eigen::VectorXd& dvdt, std::string& issue) {
   }
   if (!constraint_map_.rows.empty()) dtdy += constraint_force();
   dvdt = dtdy.cwiseQuotient(rho_bar_) + accel_force_;
-  return true;
-}
-
-// The closure is linear in v̄ for the fixed-parameter strategies, so the rate is affine, r(v̄) = c + J v̄ over
-// the evolved nodes (held nodes fixed at their values). Probed once with unit vectors; a probe at a second
-// point checks the affinity (a parameter rule or an iteration stopped by a tolerance breaks it).
-bool MesoSolver::probe_jacobian(std::string& issue) {
-  const int n = coarse_.count;
-  const Eigen::VectorXd saved = v_;
-  std::vector<int> free;
-  for (int k = 0; k < n; ++k)
-    if (!held_[k]) free.push_back(k);
-  v_.setZero();
-  hold_nodes();
-  const Eigen::VectorXd base = v_;
-  Eigen::VectorXd r0, r;
-  if (!rate(r0, issue)) return false;
-  jacobian_ = Eigen::MatrixXd::Zero(n, n);
-  for (int k : free) {
-    v_ = base;
-    v_[k] = 1.0;
-    if (!rate(r, issue)) return false;
-    jacobian_.col(k) = r - r0;
-  }
-  rate_offset_ = r0;
-  Eigen::VectorXd test = base;
-  for (int k : free) test[k] = std::sin(1.0 + 3.7 * k);
-  v_ = test;
-  if (!rate(r, issue)) return false;
-  const Eigen::VectorXd predicted = rate_offset_ + jacobian_ * (test - base);
-  const double scale = std::max(r.cwiseAbs().maxCoeff(), 1e-300);
-  v_ = saved;
-  if ((predicted - r).cwiseAbs().maxCoeff() > 1e-8 * scale) {
-    issue = "backward Euler needs a closure linear in the coarse velocity (fixed parameters); this one is not";
-    return false;
-  }
-  jacobian_base_ = base;
-  return true;
-}
-
-bool MesoSolver::step(double dt, std::string& issue) {
-  if (opt_.time_integration == "backward_euler") {
-    if (jacobian_.size() == 0 && !probe_jacobian(issue)) return false;
-    // (I − dt J) v^{n+1} = v^n + dt (c − J v_held) over the evolved nodes; held nodes keep their values.
-    const int n = coarse_.count;
-    Eigen::MatrixXd m = -dt * jacobian_;
-    m.diagonal().array() += 1.0;
-    Eigen::VectorXd rhs = v_ + dt * (rate_offset_ - jacobian_ * jacobian_base_);
-    for (int k = 0; k < n; ++k)
-      if (held_[k]) {
-        m.row(k).setZero();
-        m(k, k) = 1.0;
-        rhs[k] = held_values_[k];
-      }
-    v_ = m.partialPivLu().solve(rhs);
-    hold_nodes();
-    if (!v_.allFinite()) {
-      issue = "backward Euler step is not finite";
-      return false;
-    }
-    return true;
-  }
-  Eigen::VectorXd dvdt;
-  if (!rate(dvdt, issue)) return false;
-  v_ += dt * dvdt;
-  hold_nodes();  // (5.14), or the boundary oracle
   return true;
 }
 

@@ -1,6 +1,7 @@
 // `closurelab deconvolve` end to end on Matrix Market files: JSON output with the relative error, the
 // solution file, and non-zero exits with a message for bad input.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -30,8 +31,10 @@ Captured run(std::vector<std::string> args) {
   std::cerr.rdbuf(old_err);
   return {rc, out.str(), err.str()};
 }
+// One folder per test process: ctest runs the tests of this file in parallel processes, which would otherwise
+// overwrite each other's inputs.
 std::string dir() {
-  const auto d = std::filesystem::temp_directory_path() / "closurelab_deconvolve_cmd";
+  const auto d = std::filesystem::temp_directory_path() / ("closurelab_deconvolve_cmd_" + std::to_string(::getpid()));
   std::filesystem::create_directories(d);
   return d.string();
 }

@@ -1,5 +1,7 @@
 #include "core/averaging/averaging.hpp"
 
+#include "core/averaging/bond_weights.hpp"
+
 #include <omp.h>
 
 #include <cmath>
@@ -109,29 +111,20 @@ MesoFields average_particles(const ParticleSystem& ps, const PeriodicBox& box, c
       for (std::size_t b = 0; b < a; ++b)
         if (comps[a] == comps[b]) throw ConfigError("", "tensor component '" + req.components[a] + "' requested twice");
     const int nc = static_cast<int>(comps.size());
-    const double r = kernel.support_radius();
     std::vector<std::vector<double>> acc(omp_get_max_threads(), std::vector<double>(nn * nc, 0.0));
 #pragma omp parallel
     {
       auto& buf = acc[omp_get_thread_num()];
+      BondWeights w;
 #pragma omp for schedule(dynamic, 256)
       for (std::size_t p = 0; p < pairs.size(); ++p) {
         const auto& pf = pairs[p];
-        const Vec2 qj(ps.x[pf.j], ps.y[pf.j]);
-        const Vec2 mid = qj + 0.5 * pf.d;
-        const double reach = r + 0.5 * pf.d.norm();
         double tab[4];
         for (int c = 0; c < nc; ++c) tab[c] = pf.f[comps[c].first] * pf.d[comps[c].second];
-        // Images of the bond's midpoint within reach of the nodes; the bond integral of each image.
-        for_nodes_within(mesh.y, mid.y(), reach, [&](int jy, double oy) {
-          for_nodes_within(mesh.x, mid.x(), reach, [&](int ix, double ox) {
-            const Vec2 node = mesh.node(ix, jy);
-            const Vec2 shift = node - Vec2(ox, oy) - mid;  // the periodic image shift
-            const double b = kernel.bond_integral(node, qj + shift, qj + shift + pf.d);
-            const int n = mesh.index(ix, jy);
-            for (int c = 0; c < nc; ++c) buf[n * nc + c] += tab[c] * b;  // (2.13)
-          });
-        });
+        w.clear();
+        append_bond_weights(kernel, mesh, Vec2(ps.x[pf.j], ps.y[pf.j]), pf.d, w);
+        for (const auto& [n, b] : w)
+          for (int c = 0; c < nc; ++c) buf[n * nc + c] += tab[c] * b;  // (2.13)
       }
     }
     for (int c = 0; c < nc; ++c) {

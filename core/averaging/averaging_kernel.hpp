@@ -2,6 +2,7 @@
 // The averaging-kernel strategy family (DESIGN.md §2): the window ψ_η of (2.6)–(2.7), its Fourier symbol,
 // its support and the bond integral of Appendix A. All built-in kernels are separable,
 // ψ(x, y) = φ(x) φ(y), which the forward operators of the deconvolution use (A = A_y ⊗ A_x).
+#include <cmath>
 #include <string>
 
 #include "core/base/mesh.hpp"
@@ -29,5 +30,17 @@ class AveragingKernel {
   // 2D Fourier symbol (4.15 for the Gaussian): ψ̂(ξ) = φ̂(ξ_x) φ̂(ξ_y).
   double symbol(const Vec2& xi) const { return factor_symbol(xi.x()) * factor_symbol(xi.y()); }
 };
+
+// φ(d) summed over the periodic images of the displacement d along `axis` (φ(d) itself on a non-periodic axis):
+// the one image sum of the forward operators and the reconstruction.
+inline double factor_over_images(const AveragingKernel& k, const UniformMesh1D& axis, double d) {
+  if (!axis.periodic) return k.factor(d);
+  const double p = axis.period;
+  d -= p * std::round(d / p);
+  const int images = static_cast<int>(std::ceil(k.support_radius() / p)) + 1;
+  double v = 0;
+  for (int q = -images; q <= images; ++q) v += k.factor(d + q * p);
+  return v;
+}
 
 }  // namespace closurelab

@@ -7,14 +7,6 @@
 
 namespace closurelab {
 
-std::string to_string(DeconvolutionStatus s) {
-  switch (s) {
-    case DeconvolutionStatus::converged: return "converged";
-    case DeconvolutionStatus::no_convergence: return "no_convergence";
-    case DeconvolutionStatus::numerical_issue: return "numerical_issue";
-  }
-  return "?";
-}
 
 json DeconvolutionResult::to_json() const {
   auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };

@@ -15,13 +15,14 @@
 #include <string>
 
 #include "core/base/params.hpp"
+#include "core/base/status.hpp"
 
 namespace closurelab {
 
 class ForwardOperator;
 
-enum class DeconvolutionStatus { converged, no_convergence, numerical_issue };
-std::string to_string(DeconvolutionStatus s);
+// The shared status vocabulary (core/base/status.hpp); a deconvolution never ends at a target time.
+using DeconvolutionStatus = Status;
 
 struct DeconvolutionStats {
   int iterations = 0;              // iterations / series order / number of scanned parameters

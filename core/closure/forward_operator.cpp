@@ -10,34 +10,6 @@
 
 namespace closurelab {
 
-Discretization parse_discretization(const std::string& s, const std::string& path) {
-  if (s == "coarse_coarse") return Discretization::coarse_coarse;
-  if (s == "coarse_fine") return Discretization::coarse_fine;
-  if (s == "fine_fine") return Discretization::fine_fine;
-  throw ConfigError(path, "unknown discretization '" + s + "'; known: coarse_coarse, coarse_fine, fine_fine");
-}
-std::string to_string(Discretization d) {
-  switch (d) {
-    case Discretization::coarse_coarse: return "coarse_coarse";
-    case Discretization::coarse_fine: return "coarse_fine";
-    case Discretization::fine_fine: return "fine_fine";
-  }
-  return "?";
-}
-OperatorStorage parse_operator_storage(const std::string& s, const std::string& path) {
-  if (s == "dense") return OperatorStorage::dense;
-  if (s == "sparse") return OperatorStorage::sparse;
-  if (s == "kronecker") return OperatorStorage::kronecker;
-  throw ConfigError(path, "unknown operator storage '" + s + "'; known: dense, sparse, kronecker");
-}
-std::string to_string(OperatorStorage s) {
-  switch (s) {
-    case OperatorStorage::dense: return "dense";
-    case OperatorStorage::sparse: return "sparse";
-    case OperatorStorage::kronecker: return "kronecker";
-  }
-  return "?";
-}
 
 ForwardOperator ForwardOperator::from_dense(Eigen::MatrixXd a) {
   ForwardOperator op;
@@ -195,24 +167,10 @@ Eigen::MatrixXd kernel_matrix_1d(const AveragingKernel& kernel, const UniformMes
       (data_mesh.periodic && std::abs(data_mesh.period - solution_mesh.period) > 1e-12 * data_mesh.period))
     throw ConfigError("", "data and solution meshes must be both periodic with one period, or both not");
   const double h = solution_mesh.spacing;
-  const double r = kernel.support_radius();
   Eigen::MatrixXd a(data_mesh.count, solution_mesh.count);
-  for (int j = 0; j < solution_mesh.count; ++j) {
-    const double yj = solution_mesh.node(j);
-    for (int i = 0; i < data_mesh.count; ++i) {
-      double d = data_mesh.node(i) - yj;
-      double v = 0.0;
-      if (data_mesh.periodic) {
-        const double p = data_mesh.period;
-        d -= p * std::round(d / p);
-        const int images = static_cast<int>(std::ceil(r / p)) + 1;
-        for (int m = -images; m <= images; ++m) v += kernel.factor(d + m * p);
-      } else {
-        v = kernel.factor(d);
-      }
-      a(i, j) = h * v;
-    }
-  }
+  for (int j = 0; j < solution_mesh.count; ++j)
+    for (int i = 0; i < data_mesh.count; ++i)
+      a(i, j) = h * factor_over_images(kernel, data_mesh, data_mesh.node(i) - solution_mesh.node(j));
   return a;
 }
 

@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 
+#include "core/base/enum_names.hpp"
 #include "core/base/mesh.hpp"
 
 namespace closurelab {
@@ -20,12 +21,28 @@ namespace closurelab {
 class AveragingKernel;
 
 enum class Discretization { coarse_coarse, coarse_fine, fine_fine };
-Discretization parse_discretization(const std::string& s, const std::string& path);
-std::string to_string(Discretization d);
+template <>
+struct EnumNames<Discretization> {
+  static constexpr std::array<std::pair<Discretization, std::string_view>, 3> table{
+      {{Discretization::coarse_coarse, "coarse_coarse"},
+       {Discretization::coarse_fine, "coarse_fine"},
+       {Discretization::fine_fine, "fine_fine"}}};
+};
+inline Discretization parse_discretization(const std::string& s, const std::string& path) {
+  return parse_name<Discretization>(s, path);
+}
+inline std::string to_string(Discretization d) { return name_of(d); }
 
 enum class OperatorStorage { dense, sparse, kronecker };
-OperatorStorage parse_operator_storage(const std::string& s, const std::string& path);
-std::string to_string(OperatorStorage s);
+template <>
+struct EnumNames<OperatorStorage> {
+  static constexpr std::array<std::pair<OperatorStorage, std::string_view>, 3> table{
+      {{OperatorStorage::dense, "dense"}, {OperatorStorage::sparse, "sparse"}, {OperatorStorage::kronecker, "kronecker"}}};
+};
+inline OperatorStorage parse_operator_storage(const std::string& s, const std::string& path) {
+  return parse_name<OperatorStorage>(s, path);
+}
+inline std::string to_string(OperatorStorage s) { return name_of(s); }
 
 class ForwardOperator {
  public:

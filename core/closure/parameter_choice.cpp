@@ -18,22 +18,6 @@ std::string short_number(double v) {
 }
 }  // namespace
 
-ParameterRule parse_parameter_rule(const std::string& s, const std::string& path) {
-  if (s == "fixed") return ParameterRule::fixed;
-  if (s == "discrepancy") return ParameterRule::discrepancy;
-  if (s == "gcv") return ParameterRule::gcv;
-  if (s == "lcurve") return ParameterRule::lcurve;
-  throw ConfigError(path, "unknown parameter rule '" + s + "'; known: fixed, discrepancy, gcv, lcurve");
-}
-std::string to_string(ParameterRule r) {
-  switch (r) {
-    case ParameterRule::fixed: return "fixed";
-    case ParameterRule::discrepancy: return "discrepancy";
-    case ParameterRule::gcv: return "gcv";
-    case ParameterRule::lcurve: return "lcurve";
-  }
-  return "?";
-}
 
 std::vector<double> log_grid_descending(double hi, double lo, int count) {
   std::vector<double> g;

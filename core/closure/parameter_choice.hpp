@@ -10,13 +10,24 @@
 #include <string>
 #include <vector>
 
+#include "core/base/enum_names.hpp"
 #include "core/closure/deconvolver.hpp"
 
 namespace closurelab {
 
 enum class ParameterRule { fixed, discrepancy, gcv, lcurve };
-ParameterRule parse_parameter_rule(const std::string& s, const std::string& path);
-std::string to_string(ParameterRule r);
+template <>
+struct EnumNames<ParameterRule> {
+  static constexpr std::array<std::pair<ParameterRule, std::string_view>, 4> table{
+      {{ParameterRule::fixed, "fixed"},
+       {ParameterRule::discrepancy, "discrepancy"},
+       {ParameterRule::gcv, "gcv"},
+       {ParameterRule::lcurve, "lcurve"}}};
+};
+inline ParameterRule parse_parameter_rule(const std::string& s, const std::string& path) {
+  return parse_name<ParameterRule>(s, path);
+}
+inline std::string to_string(ParameterRule r) { return name_of(r); }
 
 // A recorded scan point (norms only; the solution is recomputed for the chosen one).
 struct RecordedPoint {

@@ -37,15 +37,6 @@ void locate(const UniformMesh1D& m, double t, int& i0, int& i1, double& w) {
   w = s - i0;
 }
 
-double image_sum(const AveragingKernel& k, const UniformMesh1D& m, double d) {
-  if (!m.periodic) return k.factor(d);
-  const double p = m.period;
-  d -= p * std::round(d / p);
-  const int images = static_cast<int>(std::ceil(k.support_radius() / p)) + 1;
-  double v = 0;
-  for (int q = -images; q <= images; ++q) v += k.factor(d + q * p);
-  return v;
-}
 }  // namespace
 
 Reconstruction::Reconstruction(TensorMesh2D mesh, int dimension, Eigen::VectorXd values)
@@ -87,12 +78,12 @@ Eigen::VectorXd coarse_fine_quadrature(const AveragingKernel& kernel, const Tens
   const int nx = coarse.nx(), ny = dimension == 1 ? 1 : coarse.ny();
   Eigen::VectorXd fx(nx), fy(ny);
   for (size_t q = 0; q < points.size(); ++q) {
-    for (int i = 0; i < nx; ++i) fx(i) = coarse.x.spacing * image_sum(kernel, coarse.x, points[q].x() - coarse.x.node(i));
+    for (int i = 0; i < nx; ++i) fx(i) = coarse.x.spacing * factor_over_images(kernel, coarse.x, points[q].x() - coarse.x.node(i));
     if (dimension == 1) {
       out(static_cast<Eigen::Index>(q)) = fx.dot(u);
       continue;
     }
-    for (int j = 0; j < ny; ++j) fy(j) = coarse.y.spacing * image_sum(kernel, coarse.y, points[q].y() - coarse.y.node(j));
+    for (int j = 0; j < ny; ++j) fy(j) = coarse.y.spacing * factor_over_images(kernel, coarse.y, points[q].y() - coarse.y.node(j));
     Eigen::Map<const Eigen::MatrixXd> U(u.data(), nx, ny);
     out(static_cast<Eigen::Index>(q)) = fx.dot(U * fy);
   }

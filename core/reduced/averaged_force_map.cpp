@@ -70,7 +70,7 @@ long row_of(double y, double dx) { return std::lround(y / dx - 0.5); }
 AveragedForceMap wall_constraint_force_map(const Scene& scene, const AveragingKernel& kernel, const UniformMesh1D& nodes) {
   const Scene strip = scene.narrowest_strip();
   ParticleSystem lattice = strip.make_particles();
-  const double reach = SmoothingKernel::from_name(scene.smoothing_kernel, scene.h).support();
+  const double reach = scene.smoothing_kernel().support();
   std::vector<std::int32_t> walls;
   std::map<long, std::vector<std::int32_t>> rows;  // fluid rows within reach of a wall
   for (std::size_t a = 0; a < lattice.size(); ++a) {

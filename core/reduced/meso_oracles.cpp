@@ -13,14 +13,12 @@ TensorMesh2D as_line(const UniformMesh1D& axis) { return TensorMesh2D{axis, Unif
 
 void MesoSolver::set_oracles(MesoOracles oracles) {
   const int n = coarse_.count;
-  if (oracles.boundary != "none" && oracles.boundary != "wall_nodes" && oracles.boundary != "wall_band")
-    throw ConfigError("/oracle/boundary", "unknown boundary oracle '" + oracles.boundary + "'; known: none, wall_nodes, wall_band");
-  if (oracles.boundary != "none" && periodic_)
+  if (oracles.boundary != BoundaryOracle::none && periodic_)
     throw ConfigError("/oracle/boundary", "the scene has no walls: there is no boundary to hold");
-  if ((oracles.closure || oracles.boundary != "none") && oracles.averaged.size() != n)
+  if ((oracles.closure || oracles.boundary != BoundaryOracle::none) && oracles.averaged.size() != n)
     throw ConfigError("/oracle", "the averaged direct solution must be given at every coarse node");
-  if (oracles.boundary != "none") {
-    const double band = oracles.boundary == "wall_band" ? 3.0 * kernel_.eta() : 0.0;
+  if (oracles.boundary != BoundaryOracle::none) {
+    const double band = oracles.boundary == BoundaryOracle::wall_band ? 3.0 * kernel_.eta() : 0.0;
     for (int k = 0; k < n; ++k) {
       const double y = coarse_.node(k);
       if (y <= scene_.wall_lo + band - 1e-12 || y >= scene_.wall_hi - band + 1e-12 || k == 0 || k == n - 1) {
@@ -53,7 +51,7 @@ void MesoSolver::set_oracles(MesoOracles oracles) {
 
 Eigen::VectorXd MesoSolver::reported_velocity() {
   Eigen::VectorXd v = v_;
-  if (periodic_ || walls_are_data_ || opt_.wall_node_value == "imposed" || oracles_.boundary != "none") return v;
+  if (periodic_ || walls_are_data_ || opt_.wall_node_value == WallNodeValue::imposed || oracles_.boundary != BoundaryOracle::none) return v;
   std::string issue;
   if (!deconvolve(issue)) return v;
   // v̄ at a wall-surface node as (2.9) of the lattice column: Σ_rows φ(y − y_j) V_j / Σ_rows φ(y − y_j), every

@@ -7,24 +7,20 @@
 
 #include "core/averaging/averaging.hpp"
 #include "core/reduced/averaged_force_map.hpp"
+#include "core/reduced/reduced_grid.hpp"
 #include "core/base/errors.hpp"
 #include "core/closure/reconstruction.hpp"
-#include "core/base/snapshot_schedule.hpp"
 
 namespace closurelab {
 
 json MesoResult::to_json() const {
-  return {{"status", status},
-          {"message", message},
-          {"steps", steps},
-          {"time", time},
-          {"dt", dt},
-          {"wall_seconds", wall_seconds},
-          {"last_relative_change", last_relative_change},
-          {"deconvolution_matvecs", deconvolution_matvecs},
-          {"deconvolution_seconds", deconvolution_seconds},
-          {"quadrature_seconds", quadrature_seconds},
-          {"quadrature", quadrature_cost.to_json()}};
+  json j = TimeLoopResult::to_json();
+  j["message"] = message;
+  j["deconvolution_matvecs"] = deconvolution_matvecs;
+  j["deconvolution_seconds"] = deconvolution_seconds;
+  j["quadrature_seconds"] = quadrature_seconds;
+  j["quadrature"] = quadrature_cost.to_json();
+  return j;
 }
 
 namespace {
@@ -32,48 +28,38 @@ namespace {
 // A 1D axis as the x-axis of a tensor mesh (Reconstruction and the forward operators take 1D data there).
 TensorMesh2D as_line(const UniformMesh1D& axis) { return TensorMesh2D{axis, UniformMesh1D{0.0, 1.0, 1, false, 0.0}}; }
 
-TensorMesh2D column(const Scene& s, const UniformMesh1D& y_axis) {
-  return TensorMesh2D{UniformMesh1D{0.0, s.box.lx, 1, true, s.box.lx}, y_axis};
-}
 
 }  // namespace
+
+ReducedGrid reduced_grid(const Scene& scene, const AveragingKernel& kernel, const MesoSolverOptions& o) {
+  // The wall-surface nodes are evolved, and are deconvolution data, under the force-density balance when the
+  // solution lives on the fine rows (coarse–fine, fine–fine).
+  return make_reduced_grid(scene, kernel, o.spacing_over_eta, o.scheme == MesoScheme::staggered,
+                           o.balance == MesoBalance::force_density && o.discretization != Discretization::coarse_coarse);
+}
+
+void check_meso_solver(const Scene& scene, const AveragingKernel& kernel, const StressQuadrature& quadrature,
+                       const MesoSolverOptions& o) {
+  const ReducedGrid grid = reduced_grid(scene, kernel, o);
+  if (o.balance != MesoBalance::force_density) {
+    try {
+      quadrature.check(scene, column_of(scene, grid.stress_axis), {"xy"});
+    } catch (const ConfigError& e) {
+      throw ConfigError("/quadrature" + e.path(), e.message());
+    }
+  }
+}
 
 MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconvolver& deconvolver,
                        StressQuadrature& quadrature, MesoSolverOptions options)
     : scene_(scene), kernel_(kernel), deconvolver_(deconvolver), quadrature_(quadrature), opt_(std::move(options)) {
-  if (!scene.x_invariant) throw ConfigError("/scene", "the coarse solver handles x-invariant scenes only");
-  const double target = opt_.spacing_over_eta * kernel.eta();
-  periodic_ = !scene.has_walls;
-  if (periodic_) {
-    const int k = static_cast<int>(std::lround(scene.box.ly / target));
-    if (k < 4) throw ConfigError("/solver/spacing_over_eta", "fewer than 4 coarse nodes across the domain");
-    coarse_ = UniformMesh1D::cell_centred(0.0, scene.box.ly, k, true);
-    fine_ = UniformMesh1D::cell_centred(0.0, scene.box.ly, scene.ny, true);
-    data_ = coarse_;
-    stress_axis_ = coarse_;
-    if (opt_.scheme == "staggered") stress_axis_.origin += 0.5 * coarse_.spacing;
-  } else {
-    const double w = scene.wall_hi - scene.wall_lo;
-    const int k = static_cast<int>(std::lround(w / target));
-    if (k < 4)
-      throw ConfigError("/solver/spacing_over_eta", "fewer than 4 coarse intervals across the channel (eta' too large)");
-    coarse_ = UniformMesh1D{scene.wall_lo, w / k, k + 1, false, 0.0};  // nodes on both walls (5.6)
-    // The deconvolution's data: the interior nodes. The wall nodes carry the imposed v̄ = 0 of (5.6), not an
-    // average (the real average there is not zero: the window holds fluid), so they are not data; their
-    // solution value is the particle velocity on the wall surface, zero by no slip. Used as data, the false
-    // zero drives the reconstructed near-wall fluid backwards, the wall particles drag it forwards, and with
-    // the wall constraint forces the loop diverges (measured for cc orders >= 1 and for cf).
-    walls_are_data_ = opt_.balance == "force_density" && opt_.discretization != Discretization::coarse_coarse;
-    data_ = walls_are_data_ ? coarse_ : UniformMesh1D{scene.wall_lo + w / k, w / k, k - 1, false, 0.0};
-    const int j_lo = static_cast<int>(std::floor(scene.wall_lo / scene.dx - 0.5)) + 1;
-    int count = 0;
-    while ((j_lo + count + 0.5) * scene.dx < scene.wall_hi) ++count;
-    fine_ = UniformMesh1D{(j_lo + 0.5) * scene.dx, scene.dx, count, false, 0.0};
-    stress_axis_ = coarse_;
-    if (opt_.scheme == "staggered") stress_axis_ = UniformMesh1D{scene.wall_lo + 0.5 * coarse_.spacing, coarse_.spacing, k, false, 0.0};
-  }
-  if (opt_.scheme != "paper" && opt_.scheme != "staggered")
-    throw ConfigError("/solver/scheme", "unknown scheme '" + opt_.scheme + "'; known: paper, staggered");
+  const ReducedGrid grid = reduced_grid(scene, kernel, opt_);
+  coarse_ = grid.coarse;
+  data_ = grid.data;
+  fine_ = grid.fine;
+  stress_axis_ = grid.stress_axis;
+  periodic_ = grid.periodic;
+  walls_are_data_ = grid.walls_are_data;
   op_ = make_averaging_operator_1d(kernel, data_, fine_, opt_.discretization);
   if (!periodic_ && opt_.discretization != Discretization::coarse_coarse) {
     // The fluid rows' links, the two to the wall rows (at rest) included, weighted by the viscosity there
@@ -93,9 +79,10 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
     throw ConfigError("/closure/deconvolver" + e.path(), e.message());  // strategies report relative paths
   }
   // The force-density balance needs no stress (its divergence is exact): the quadrature is not set up.
-  if (opt_.balance != "force_density") {
+  if (opt_.balance != MesoBalance::force_density) {
     try {
-      quadrature_.setup(scene, kernel, column(scene, stress_axis_), {"xy"});
+      quadrature_.setup(scene, kernel, column_of(scene, stress_axis_), {"xy"});
+      quad_cost_ = quadrature_.setup_cost();
     } catch (const ConfigError& e) {
       throw ConfigError("/quadrature" + e.path(), e.message());
     }
@@ -106,21 +93,15 @@ MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconv
   // Per unit length in x, so the narrowest strip gives them at a cost independent of the scene's width.
   const Scene strip = scene.narrowest_strip();
   const ParticleSystem lattice = strip.make_particles();
-  const MesoFields f = average_particles(lattice, strip.box, kernel, column(strip, coarse_), req, {}, strip.force_x);
+  const MesoFields f = average_particles(lattice, strip.box, kernel, column_of(strip, coarse_), req, {}, strip.force_x);
   rho_bar_ = f.rho;
   accel_force_ = f.fx.cwiseQuotient(f.rho);
   v_ = Eigen::VectorXd::Zero(coarse_.count);
   held_.assign(coarse_.count, false);
   held_values_ = Eigen::VectorXd::Zero(coarse_.count);
   if (!periodic_ && !walls_are_data_) held_.front() = held_.back() = true;  // (5.6)/(5.14)
-  if (opt_.balance != "stress_divergence" && opt_.balance != "force_density")
-    throw ConfigError("/solver/balance", "unknown balance '" + opt_.balance + "'; known: stress_divergence, force_density");
-  if (opt_.balance == "force_density") force_density_map_ = fluid_force_density_map(scene, kernel, coarse_);
-  if (opt_.time_integration != "explicit" && opt_.time_integration != "backward_euler")
-    throw ConfigError("/solver/time_integration", "unknown time integration '" + opt_.time_integration + "'; known: explicit, backward_euler");
-  if (opt_.wall_node_value != "imposed" && opt_.wall_node_value != "reconstructed")
-    throw ConfigError("/solver/wall_node_value", "unknown value '" + opt_.wall_node_value + "'; known: imposed, reconstructed");
-  if (opt_.wall_constraint_forces && scene.has_walls && opt_.balance != "force_density")
+  if (opt_.balance == MesoBalance::force_density) force_density_map_ = fluid_force_density_map(scene, kernel, coarse_);
+  if (opt_.wall_constraint_forces && scene.has_walls && opt_.balance != MesoBalance::force_density)
     constraint_map_ = wall_constraint_force_map(scene, kernel, coarse_);
 }
 
@@ -189,19 +170,20 @@ bool MesoSolver::deconvolve(std::string& issue) {
 bool MesoSolver::close_stress(std::string& issue) {
   if (!deconvolve(issue)) return false;
   const auto t1 = std::chrono::steady_clock::now();
-  auto out = quadrature_.evaluate([this](const std::vector<Vec2>& p) { return sample_reconstruction(p); });
-  t_ = out.at("xy");
+  const QuadratureResult r = quadrature_.evaluate([this](const std::vector<Vec2>& p) { return sample_reconstruction(p); });
   quad_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-  if (!t_.allFinite()) {
-    issue = "interaction stress is not finite";
+  quad_cost_.add(r);
+  if (r.status != Status::converged) {
+    issue = r.message;
     return false;
   }
+  t_ = r.stress.at("xy");
   return true;
 }
 
 bool MesoSolver::rate(Eigen::VectorXd& dvdt, std::string& issue) {
   const int n = coarse_.count;
-  if (opt_.balance == "force_density") {
+  if (opt_.balance == MesoBalance::force_density) {
     if (!deconvolve(issue)) return false;
     const auto t1 = std::chrono::steady_clock::now();
     const Eigen::VectorXd density = force_density_map_.apply(sample_reconstruction(force_density_map_.rows).row(0).transpose());
@@ -219,11 +201,11 @@ bool MesoSolver::rate(Eigen::VectorXd& dvdt, std::string& issue) {
   const auto wrap = [n](int k) { return (k % n + n) % n; };
   if (periodic_) {
     for (int k = 0; k < n; ++k)
-      dtdy[k] = opt_.scheme == "paper" ? (t_[wrap(k + 1)] - t_[wrap(k - 1)]) / (2 * h) : (t_[k] - t_[wrap(k - 1)]) / h;
+      dtdy[k] = opt_.scheme == MesoScheme::paper ? (t_[wrap(k + 1)] - t_[wrap(k - 1)]) / (2 * h) : (t_[k] - t_[wrap(k - 1)]) / h;
   } else {
     const int kk = n - 1;  // wall nodes 0 and kk
     for (int k = 1; k < kk; ++k) {
-      if (opt_.scheme == "staggered") {
+      if (opt_.scheme == MesoScheme::staggered) {
         dtdy[k] = (t_[k] - t_[k - 1]) / h;  // T at mid-nodes k − 1/2 and k + 1/2
       } else if (k == 1) {
         dtdy[k] = (t_[2] - t_[1]) / h;  // (5.11)
@@ -247,76 +229,39 @@ double MesoSolver::time_step() const {
 }
 
 MesoResult MesoSolver::run() {
-  using clock = std::chrono::steady_clock;
-  const auto t0 = clock::now();
-  auto last_report = t0;
+  SteppedModel model;
+  model.name = "reduced model";
+  model.time_step = [&] { return time_step(); };
+  model.step = [&](double dt, std::string& issue) { return step(dt, issue); };
+  model.observe = [&] { return v_; };
+  model.check_state = [&](std::string& issue) {
+    if (!v_.allFinite()) {
+      issue = "coarse velocity is not finite";
+      return false;
+    }
+    const double mag = v_.cwiseAbs().maxCoeff();
+    if (scene_.analytic_peak > 0 && mag > opt_.divergence_factor * scene_.analytic_peak) {
+      std::ostringstream os;
+      os << "diverged: max|v| = " << mag << " exceeds " << opt_.divergence_factor << " x the analytic peak";
+      issue = os.str();
+      return false;
+    }
+    return true;
+  };
+  if (opt_.on_snapshot) model.snapshot = [&](double t) { opt_.on_snapshot(t, reported_velocity()); };
+  model.describe = [&] {
+    std::ostringstream os;
+    os << "max|v| = " << v_.cwiseAbs().maxCoeff();
+    return os.str();
+  };
   MesoResult res;
-  res.status = "no_convergence";
-  Eigen::VectorXd reference = v_;
-  SnapshotSchedule snapshots(opt_.snapshot_times);
-  while (res.steps < opt_.max_steps) {
-    const double dt_full = time_step();  // reported; snapshots and the target time may shorten a step
-    double dt = snapshots.clamp(res.time, dt_full);
-    if (!opt_.to_steady_state) {
-      if (res.time >= opt_.target_time * (1.0 - 1e-14)) {
-        res.status = "target_time";
-        break;
-      }
-      dt = std::min(dt, opt_.target_time - res.time);
-    } else if (res.time >= opt_.max_time) {
-      break;
-    }
-    std::string issue;
-    if (!step(dt, issue)) {
-      res.status = "numerical_issue";
-      res.message = issue;
-      break;
-    }
-    res.dt = dt_full;
-    res.time += dt;
-    ++res.steps;
-    if (snapshots.due(res.time) && opt_.on_snapshot) opt_.on_snapshot(res.time, reported_velocity());
-    if (res.steps % opt_.steady_window == 0) {
-      const double mag = v_.cwiseAbs().maxCoeff();
-      res.last_relative_change = mag > 0 ? (v_ - reference).cwiseAbs().maxCoeff() / mag : 0.0;
-      reference = v_;
-      if (!v_.allFinite()) {
-        res.status = "numerical_issue";
-        res.message = "coarse velocity is not finite";
-        break;
-      }
-      if (scene_.analytic_peak > 0 && mag > opt_.divergence_factor * scene_.analytic_peak) {
-        std::ostringstream os;
-        os << "diverged: max|v| = " << mag << " exceeds " << opt_.divergence_factor << " x the analytic peak";
-        res.status = "numerical_issue";
-        res.message = os.str();
-        break;
-      }
-      if (opt_.to_steady_state && res.steps > opt_.steady_window && res.last_relative_change < opt_.steady_tolerance) {
-        res.status = "converged";
-        break;
-      }
-      const auto now = clock::now();
-      if (opt_.progress && std::chrono::duration<double>(now - last_report).count() >= opt_.progress_seconds) {
-        last_report = now;
-        std::ostringstream os;
-        os << "reduced model: step " << res.steps << ", t = " << res.time << ", max|v| = " << mag
-           << ", change over " << opt_.steady_window << " steps = " << res.last_relative_change;
-        opt_.progress(os.str());
-      }
-    }
-  }
-  if (res.status != "numerical_issue" && !v_.allFinite()) {
-    res.status = "numerical_issue";
-    res.message = "coarse velocity is not finite";
-  }
-  res.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  static_cast<TimeLoopResult&>(res) = run_time_loop(model, opt_);
   res.y = coarse_.nodes();
   res.v = reported_velocity();
   res.deconvolution_matvecs = matvecs_;
   res.deconvolution_seconds = deconv_seconds_;
   res.quadrature_seconds = quad_seconds_;
-  res.quadrature_cost = quadrature_.cost();
+  res.quadrature_cost = quad_cost_;
   return res;
 }
 

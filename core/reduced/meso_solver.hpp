@@ -9,6 +9,9 @@
 // the averaged density (2.8). A conservative (staggered) variant evaluates T at mid-nodes and updates by
 // the flux difference.
 #include <Eigen/Core>
+#include <array>
+#include <string_view>
+#include <utility>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -21,32 +24,62 @@
 #include "core/closure/forward_operator.hpp"
 #include "core/closure/reconstruction.hpp"
 #include "core/reduced/averaged_force_map.hpp"
+#include "core/reduced/reduced_grid.hpp"
+#include "core/base/enum_names.hpp"
 #include "core/base/params.hpp"
+#include "core/base/time_loop.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_engine.hpp"
 #include "core/closure/stress_quadrature.hpp"
 
 namespace closurelab {
 
-struct MesoSolverOptions {
+// The solver's choices, named as the JSON names them (core/base/enum_names.hpp).
+enum class MesoScheme { paper, staggered };                          // (5.11)–(5.14), or the conservative flux form
+enum class MesoBalance { stress_divergence, force_density };
+enum class TimeIntegration { explicit_euler, backward_euler };
+enum class WallNodeValue { imposed, reconstructed };
+enum class BoundaryOracle { none, wall_nodes, wall_band };
+template <>
+struct EnumNames<MesoScheme> {
+  static constexpr std::array<std::pair<MesoScheme, std::string_view>, 2> table{
+      {{MesoScheme::paper, "paper"}, {MesoScheme::staggered, "staggered"}}};
+};
+template <>
+struct EnumNames<MesoBalance> {
+  static constexpr std::array<std::pair<MesoBalance, std::string_view>, 2> table{
+      {{MesoBalance::stress_divergence, "stress_divergence"}, {MesoBalance::force_density, "force_density"}}};
+};
+template <>
+struct EnumNames<TimeIntegration> {
+  static constexpr std::array<std::pair<TimeIntegration, std::string_view>, 2> table{
+      {{TimeIntegration::explicit_euler, "explicit"}, {TimeIntegration::backward_euler, "backward_euler"}}};
+};
+template <>
+struct EnumNames<WallNodeValue> {
+  static constexpr std::array<std::pair<WallNodeValue, std::string_view>, 2> table{
+      {{WallNodeValue::imposed, "imposed"}, {WallNodeValue::reconstructed, "reconstructed"}}};
+};
+template <>
+struct EnumNames<BoundaryOracle> {
+  static constexpr std::array<std::pair<BoundaryOracle, std::string_view>, 3> table{
+      {{BoundaryOracle::none, "none"}, {BoundaryOracle::wall_nodes, "wall_nodes"}, {BoundaryOracle::wall_band, "wall_band"}}};
+};
+
+struct MesoSolverOptions : TimeLoopOptions {
+  MesoSolverOptions() {
+    max_time = 20.0;
+    max_steps = 10000000;
+  }
   double kappa = 0.25;                 // (5.21)–(5.22)
   double spacing_over_eta = 1.0;       // coarse mesh spacing Δ / η' (the paper: 1)
-  std::string scheme = "paper";        // "paper": (5.11)–(5.14); "staggered": conservative flux form
+  MesoScheme scheme = MesoScheme::paper;
   Discretization discretization = Discretization::coarse_coarse;
   double noise_level = 0.0;            // δ handed to the deconvolver's parameter rule
-  bool to_steady_state = true;
-  double target_time = 0.0;
-  double steady_tolerance = 1e-5;      // max|Δv̄| / max|v̄| over the window (as the direct solver)
-  int steady_window = 1000;
-  double max_time = 20.0;
   // Divergence: stop (numerical_issue) when max|v̄| exceeds this multiple of the scene's analytic peak; an
   // unstable closure otherwise runs on with (5.21) shrinking the step without bound.
   double divergence_factor = 1e3;
-  std::int64_t max_steps = 10000000;
-  double progress_seconds = 10.0;
-  std::function<void(const std::string&)> progress;
-  // Snapshots (ascending model times): the run lands a step on each and calls on_snapshot(time, v̄).
-  std::vector<double> snapshot_times;
+  // Called at each of the snapshot_times with the reported v̄.
   std::function<void(double time, const Eigen::VectorXd& v)> on_snapshot;
   // Wall particles are held at rest by constraint forces that (5.8) does not contain (DESIGN.md §6). When
   // true, their average F_c(y) = −Σ_walls f_i^int ψ(y − q_i), with f_i^int the pair forces (5.1) on wall
@@ -56,18 +89,18 @@ struct MesoSolverOptions {
   // What the walled scenes report at the two wall-surface nodes: "imposed", the v̄ = 0 of (5.6); or
   // "reconstructed", the average (2.9) of the closure's reconstruction there (fluid rows at the reconstructed
   // velocity, wall particles at rest). An output only: the wall-surface nodes are not deconvolution data.
-  std::string wall_node_value = "imposed";
+  WallNodeValue wall_node_value = WallNodeValue::imposed;
   // The right-hand side of the balance: "stress_divergence", the paper's finite difference of the stress
   // quadrature's T_int (plus the wall constraint forces when asked); or "force_density", the exact divergence
   // of (2.13) with the constraint forces included: Σ_{j fluid} ψ(x − q_j) f_j, the averaged pair force (5.1) on
   // the fluid particles under the reconstructed velocities, an affine map of the reconstruction on the fluid
   // rows probed once (positions stay on the lattice). With it, the wall-surface nodes are evolved (and are
   // deconvolution data) in the coarse–fine and fine–fine discretizations.
-  std::string balance = "stress_divergence";
+  MesoBalance balance = MesoBalance::stress_divergence;
   // "explicit": forward Euler (5.11)–(5.14); "backward_euler": implicit in the whole rate, which is affine in v̄
   // for a closure with fixed parameters (its Jacobian probed once, checked for affinity): stable for the stiff
   // fluid–wall coupling of evolved wall-surface nodes, same steady state.
-  std::string time_integration = "explicit";
+  TimeIntegration time_integration = TimeIntegration::explicit_euler;
 };
 
 // Oracle substitution (the error budget): ingredients of the reduced model replaced by their exact
@@ -80,22 +113,32 @@ struct MesoOracles {
   bool closure = false;
   // Boundary oracle: "none"; "wall_nodes": the two wall-surface nodes held at v̄_d instead of (5.6);
   // "wall_band": every node within 3η' of a wall surface held at v̄_d.
-  std::string boundary = "none";
+  BoundaryOracle boundary = BoundaryOracle::none;
   Eigen::VectorXd averaged;             // v̄_d at the coarse nodes
   Eigen::VectorXd row_y, row_velocity;  // the fluid lattice rows (ascending y) and V_d there
 };
 
-struct MesoResult {
-  std::string status;  // converged, target_time, no_convergence, numerical_issue
-  std::string message;
-  std::int64_t steps = 0;
-  double time = 0.0, dt = 0.0, wall_seconds = 0.0, last_relative_change = 0.0;
+struct MesoResult : TimeLoopResult {
   Eigen::VectorXd y, v;  // coarse nodes and v̄_x there
   long deconvolution_matvecs = 0;
   double deconvolution_seconds = 0.0, quadrature_seconds = 0.0;
   QuadratureCost quadrature_cost;
   json to_json() const;  // everything but the profile
 };
+
+// The solver section of a spec ("solver": {...}): its schema, defaults from MesoSolverOptions{} (one source;
+// meso_options_from(resolved defaults) == MesoSolverOptions{}, tested), and the options read from a resolved
+// section (the run-control parameters as core/base/time_loop.hpp declares them).
+ParamSchema meso_solver_schema();
+MesoSolverOptions meso_options_from(const json& resolved_solver);
+
+// The solver's meshes for these options (core/reduced/reduced_grid.hpp).
+ReducedGrid reduced_grid(const Scene& scene, const AveragingKernel& kernel, const MesoSolverOptions& options);
+// What the solver's constructor checks before any work (the grid, the quadrature's fit), for validating a spec
+// without building the strategies: ConfigError with the JSON path of the section at fault. The deconvolver is
+// bound to its operator when the cell runs (a configuration that does not fit the operator fails that cell).
+void check_meso_solver(const Scene& scene, const AveragingKernel& kernel, const StressQuadrature& quadrature,
+                       const MesoSolverOptions& options);
 
 class MesoSolver {
  public:
@@ -152,6 +195,7 @@ class MesoSolver {
   std::optional<Reconstruction> oracle_correction_;  // V_d − R(v̄_d) on the fluid rows
   long matvecs_ = 0;
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
+  QuadratureCost quad_cost_;  // the quadrature's setup and the calls so far
 };
 
 }  // namespace closurelab

@@ -45,7 +45,7 @@ bool MesoSolver::probe_jacobian(std::string& issue) {
 }
 
 bool MesoSolver::step(double dt, std::string& issue) {
-  if (opt_.time_integration == "backward_euler") {
+  if (opt_.time_integration == TimeIntegration::backward_euler) {
     if (jacobian_.size() == 0 && !probe_jacobian(issue)) return false;
     // (I − dt J) v^{n+1} = v^n + dt (c − J v_held) over the evolved nodes; held nodes keep their values.
     const int n = coarse_.count;

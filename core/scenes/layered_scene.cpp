@@ -132,27 +132,23 @@ void register_layered_scene(Registry& r) {
                                            "eta_over_l <= 1/6");
         // Walls of 3η' in whole rows (3η'/ε' rounded), outside the channel.
         const int wall_rows = static_cast<int>(std::lround(3.0 * s->eta / s->dx));
-        s->smoothing_kernel = p.at("smoothing_kernel").get<std::string>();
-        s->h = p.at("h_over_dx").get<double>() * s->dx;
-        const double support = SmoothingKernel::from_name(s->smoothing_kernel, s->h).support();
+        read_sph_discretization(*s, p, "");
+        const double support = s->smoothing_kernel().support();
         if (wall_rows * s->dx < support)
           throw ConfigError("/eta_over_l", "walls (3 eta' = " + std::to_string(wall_rows) +
                                                " rows) thinner than the SPH support; raise eta' or n_y");
         s->ny = s->ny + 2 * wall_rows;  // lattice rows of the box, walls included
         s->box = PeriodicBox{s->nx * s->dx, s->ny * s->dx, true, false};
-        if (s->box.lx < 3.0 * (support + 0.5 * s->dx))
-          throw ConfigError("/n_x", "the periodic strip (n_x epsilon') must hold 3 SPH supports plus the list skin; "
-                                    "raise n_x to at least " +
-                                        std::to_string(static_cast<int>(std::ceil(3.0 * (support + 0.5 * s->dx) / s->dx))));
+        check_strip_width(*s, "");
         s->has_walls = true;
         s->wall_lo = wall_rows * s->dx;
         s->wall_hi = s->wall_lo + l;
-        s->wall_model = p.at("wall_model") == "ghost_velocity" ? WallModel::GhostVelocity : WallModel::ZeroVelocity;
+        s->wall_model = parse_name<WallModel>(p.at("wall_model").get<std::string>(), "/wall_model");
         s->ghost_beta_max = p.at("ghost_beta_max").get<double>();
         s->rho0 = p.at("rho").get<double>();
         const double mu0 = p.at("mu_viscous").get<double>(), mu1 = p.at("mu_less_viscous").get<double>();
         s->phase_viscosity = {mu0, mu1};
-        s->pair_viscosity_mean = pair_viscosity_mean_from_name(p.at("pair_viscosity_mean").get<std::string>());
+        s->pair_viscosity_mean = parse_name<PairViscosityMean>(p.at("pair_viscosity_mean").get<std::string>(), "/pair_viscosity_mean");
 
         // Phases by fluid row; the walls take phase 0 (the layers never touch them).
         const int fluid_rows = p.at("n_y").get<int>();

@@ -24,7 +24,7 @@ ParticleSystem Scene::make_particles() const {
 
 Scene Scene::narrowest_strip() const {
   if (!x_invariant || !box.periodic_x) return *this;
-  const double support = SmoothingKernel::from_name(smoothing_kernel, h).support();
+  const double support = smoothing_kernel().support();
   const int columns = static_cast<int>(std::ceil(3.0 * (support + 0.5 * dx) / dx - 1e-9));
   if (columns >= nx) return *this;
   Scene s = *this;
@@ -35,12 +35,22 @@ Scene Scene::narrowest_strip() const {
 
 double Scene::particle_mass() const {
   // m = rho0 / n0 with n0 the number density of the perfect lattice, so the SPH density at rest is rho0.
-  const SmoothingKernel w = SmoothingKernel::from_name(smoothing_kernel, h);
+  const SmoothingKernel w = smoothing_kernel();
   const int reach = static_cast<int>(std::ceil(w.support() / dx)) + 1;
   double n0 = 0.0;
   for (int a = -reach; a <= reach; ++a)
     for (int b = -reach; b <= reach; ++b) n0 += w.w(dx * std::hypot(a, b));
   return rho0 / n0;
+}
+
+bool Scene::in_fluid(double y) const {
+  const double tol = 1e-12 * box.ly;
+  return !has_walls || (y > wall_lo + tol && y < wall_hi - tol);
+}
+
+bool Scene::in_interior(double y) const {
+  const double tol = 1e-12 * box.ly;
+  return !has_walls || (y >= wall_lo + 3.0 * eta - tol && y <= wall_hi - 3.0 * eta + tol);
 }
 
 double Scene::max_viscosity() const {
@@ -55,14 +65,27 @@ ParamSchema wall_model_params() {
   return {
       string_param("wall_model", "zero_velocity",
                    "zero_velocity: wall particles at rest (5.3, paper); ghost_velocity: Morris ghost velocities",
-                   {"zero_velocity", "ghost_velocity"}),
+                   names_of<WallModel>()),
       number_param("ghost_beta_max", 1.0e6, "cap on 1 + d_wall/d_fluid in the ghost-velocity wall (Morris: 1.5)", 1.0, {}),
   };
 }
 
+void read_sph_discretization(Scene& s, const json& p, const std::string& path) {
+  s.smoothing_type = parse_name<SmoothingKernel::Type>(p.at("smoothing_kernel").get<std::string>(), path + "/smoothing_kernel");
+  s.h = p.at("h_over_dx").get<double>() * s.dx;
+}
+
+void check_strip_width(const Scene& s, const std::string& path) {
+  const double support = s.smoothing_kernel().support();
+  if (s.box.periodic_x && s.box.lx < 3.0 * (support + 0.5 * s.dx))
+    throw ConfigError(path + "/n_x", "the periodic strip (n_x epsilon') must hold 3 SPH supports plus the list skin; "
+                                     "raise n_x to at least " +
+                                         std::to_string(static_cast<int>(std::ceil(3.0 * (support + 0.5 * s.dx) / s.dx))));
+}
+
 ParamSchema sph_discretization_params() {
   return {
-      string_param("smoothing_kernel", "quintic", "SPH smoothing function", {"quintic", "wendland_c2"}),
+      string_param("smoothing_kernel", "quintic", "SPH smoothing function", names_of<SmoothingKernel::Type>()),
       number_param("h_over_dx", 1.0, "SPH smoothing length h / epsilon'", 0.5, 3.0),
       number_param("sound_speed_factor", 10.0, "sound speed / analytic peak velocity (>= 10)", 10.0, {}),
   };
@@ -122,18 +145,13 @@ Scene make_channel(const std::string& name, const json& p, const std::string& pa
   if (s.wall_hi - s.wall_lo < 4.0 * s.dx || fluid_rows < 4)
     throw ConfigError(path + "/eta_over_ly", "eta' too large for the domain: the walls (3 eta' each) leave " +
                                                  std::to_string(fluid_rows) + " fluid rows (need >= 4; need eta'/L_y < 1/6)");
-  s.wall_model = p.at("wall_model") == "ghost_velocity" ? WallModel::GhostVelocity : WallModel::ZeroVelocity;
+  s.wall_model = parse_name<WallModel>(p.at("wall_model").get<std::string>(), path + "/wall_model");
   s.ghost_beta_max = p.at("ghost_beta_max").get<double>();
   s.rho0 = p.at("rho").get<double>();
   s.phase_viscosity = {p.at("mu").get<double>()};
-  s.smoothing_kernel = p.at("smoothing_kernel").get<std::string>();
-  s.h = p.at("h_over_dx").get<double>() * s.dx;
-  const double support = SmoothingKernel::from_name(s.smoothing_kernel, s.h).support();
-  if (s.box.lx < 3.0 * (support + 0.5 * s.dx))
-    throw ConfigError(path + "/n_x", "the periodic strip (n_x epsilon') must hold 3 SPH supports plus the list skin; "
-                                     "raise n_x to at least " +
-                                         std::to_string(static_cast<int>(std::ceil(3.0 * (support + 0.5 * s.dx) / s.dx))));
-  if (s.wall_lo < support)
+  read_sph_discretization(s, p, path);
+  check_strip_width(s, path);
+  if (s.wall_lo < s.smoothing_kernel().support())
     throw ConfigError(path + "/eta_over_ly", "walls (3 eta') thinner than the SPH support; raise eta' or n_y");
   s.x_invariant = true;
   s.stress_components = {"xy"};
@@ -184,11 +202,9 @@ void register_scenes(Registry& r) {
         s->eta = p.at("eta_over_ly").get<double>() * ly;
         s->rho0 = p.at("rho").get<double>();
         s->phase_viscosity = {p.at("mu").get<double>()};
-        s->smoothing_kernel = p.at("smoothing_kernel").get<std::string>();
-        s->h = p.at("h_over_dx").get<double>() * s->dx;
-        const double support = SmoothingKernel::from_name(s->smoothing_kernel, s->h).support();
-        if (s->box.lx < 3.0 * (support + 0.5 * s->dx))
-          throw ConfigError("/n_x", "the periodic strip (n_x epsilon') must hold 3 SPH supports plus the list skin");
+        read_sph_discretization(*s, p, "");
+        check_strip_width(*s, "");
+        const double support = s->smoothing_kernel().support();
         if (ly < 3.0 * (support + 0.5 * s->dx))
           throw ConfigError("/n_y", "the periodic height must hold 3 SPH supports plus the list skin; raise n_y");
         if (s->eta * 6.0 > ly) throw ConfigError("/eta_over_ly", "eta' too large for the domain: need 6 eta' <= L_y");

@@ -8,16 +8,23 @@
 #include <vector>
 
 #include "core/sph/equation_of_state.hpp"
+#include "core/base/enum_names.hpp"
 #include "core/base/mesh.hpp"
 #include "core/base/params.hpp"
 #include "core/sph/particles.hpp"
+#include "core/sph/sph_kernel.hpp"
 #include "core/sph/sph_pair_force.hpp"
 
 namespace closurelab {
 
 enum class WallModel {
-  ZeroVelocity,   // (5.3): wall particles at rest, used as they are in the pair forces
-  GhostVelocity,  // Morris et al. (1997): in a fluid–wall pair the wall particle carries −(d_wall/d_fluid) v_fluid
+  zero_velocity,   // (5.3): wall particles at rest, used as they are in the pair forces
+  ghost_velocity,  // Morris et al. (1997): in a fluid–wall pair the wall particle carries −(d_wall/d_fluid) v_fluid
+};
+template <>
+struct EnumNames<WallModel> {
+  static constexpr std::array<std::pair<WallModel, std::string_view>, 2> table{
+      {{WallModel::zero_velocity, "zero_velocity"}, {WallModel::ghost_velocity, "ghost_velocity"}}};
 };
 
 struct Scene {
@@ -31,7 +38,7 @@ struct Scene {
   double eta = 0.0;  // η', the averaging scale; walls are 3η' thick (5.3)
   bool has_walls = false;
   double wall_lo = 0.0, wall_hi = 0.0;  // l1, l2 of (5.15)
-  WallModel wall_model = WallModel::ZeroVelocity;
+  WallModel wall_model = WallModel::zero_velocity;
   double ghost_beta_max = 0.0;
 
   // Material and forcing (model units).
@@ -43,12 +50,13 @@ struct Scene {
   // Heights of the phase interfaces inside the channel (between lattice rows), ascending; empty if one phase.
   std::vector<double> interfaces;
   // μ_ij of (5.1) for unlike particles (core/sph_pair_force.hpp).
-  PairViscosityMean pair_viscosity_mean = PairViscosityMean::Arithmetic;
+  PairViscosityMean pair_viscosity_mean = PairViscosityMean::arithmetic;
   std::function<double(double y)> force_x;  // body force per unit mass along x
 
   // SPH discretization.
-  std::string smoothing_kernel = "quintic";
+  SmoothingKernel::Type smoothing_type = SmoothingKernel::Type::quintic;
   double h = 0.0;            // smoothing length
+  SmoothingKernel smoothing_kernel() const { return SmoothingKernel(smoothing_type, h); }
   double sound_speed = 0.0;  // >= 10x the peak velocity
   // Equation of state: the weakly compressible P = c²(m n − ρ0) + background_pressure unless van_der_waals
   // is set (7.1) (core/equation_of_state.hpp).
@@ -72,6 +80,13 @@ struct Scene {
   std::optional<SineMode> steady_sine_mode;
 
   bool is_wall(double y) const { return has_walls && (y < wall_lo || y > wall_hi); }
+  // The regions of the error tables (one definition): fluid, strictly between the wall surfaces (a node on a
+  // wall surface carries the imposed v̄ = 0 of (5.6)); interior, at least 3η' from both wall surfaces; the wall
+  // band, fluid and not interior. Without walls every point is fluid and interior. A point within 1e-12 L_y of
+  // a region's edge counts as on it (nodes placed at l1 + 3η' by arithmetic are interior).
+  bool in_fluid(double y) const;
+  bool in_interior(double y) const;
+  bool in_wall_band(double y) const { return in_fluid(y) && !in_interior(y); }
   // For an x-invariant scene, the same scene on the narrowest periodic strip the SPH engine accepts (3 supports
   // plus the list skin): per-unit-length quantities (averages with periodic images, pair sums per column) are
   // the same on it; otherwise the scene itself.
@@ -103,5 +118,10 @@ struct Scene {
 // Scene parameters shared by the scene schemas: the wall model (walled scenes) and the SPH discretization.
 ParamSchema wall_model_params();
 ParamSchema sph_discretization_params();  // smoothing_kernel, h_over_dx, sound_speed_factor
+// Reads smoothing_kernel and h_over_dx of a resolved scene section (path: its JSON path) into a scene whose dx
+// is set.
+void read_sph_discretization(Scene& scene, const json& resolved, const std::string& path);
+// A periodic strip must hold 3 SPH supports plus the list skin (ConfigError at path/n_x otherwise).
+void check_strip_width(const Scene& scene, const std::string& path);
 
 }  // namespace closurelab

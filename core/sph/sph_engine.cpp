@@ -11,7 +11,7 @@
 namespace closurelab {
 
 SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
-    : scene_(scene), ps_(particles), w_(SmoothingKernel::from_name(scene.smoothing_kernel, scene.h)) {
+    : scene_(scene), ps_(particles), w_(scene.smoothing_kernel()) {
   skin_ = 0.5 * scene.dx;
   mass_ = scene.particle_mass();
   const std::size_t n = ps_.size();
@@ -53,7 +53,7 @@ SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
   thread_buf_.resize(omp_get_max_threads());
   // The ghost-velocity wall multiplies the viscous coupling of a fluid–wall pair by β <= 1 + d_wall/d_fluid;
   // with the wall between lattice rows, d_fluid >= ε'/2 and d_wall < support.
-  viscous_stiffening_ = scene.wall_model == WallModel::GhostVelocity
+  viscous_stiffening_ = scene.wall_model == WallModel::ghost_velocity
                             ? std::min(scene.ghost_beta_max, 1.0 + w_.support() / (0.5 * scene.dx))
                             : 1.0;
 }
@@ -132,7 +132,7 @@ Vec2 SphEngine::pair_force(std::size_t p, double p_over_n2_i, double p_over_n2_j
 
 Vec2 SphEngine::relative_velocity(std::int32_t a, std::int32_t b) const {
   const bool fa = ps_.fixed[a], fb = ps_.fixed[b];
-  if (scene_.wall_model == WallModel::ZeroVelocity || fa == fb)
+  if (scene_.wall_model == WallModel::zero_velocity || fa == fb)
     return {ps_.vx[a] - ps_.vx[b], ps_.vy[a] - ps_.vy[b]};
   // Ghost velocity: the wall particle moves with −(d_wall / d_fluid) v_fluid, so that the velocity
   // continued across the wall surface vanishes on it.

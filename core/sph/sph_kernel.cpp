@@ -8,7 +8,7 @@ namespace closurelab {
 
 SmoothingKernel::SmoothingKernel(Type type, double h) : type_(type), h_(h) {
   if (!(h > 0)) throw ConfigError("/h_over_dx", "smoothing length must be positive");
-  if (type == Type::Quintic) {
+  if (type == Type::quintic) {
     support_ = 3.0 * h;
     sigma_ = 7.0 / (478.0 * M_PI * h * h);
   } else {
@@ -17,15 +17,9 @@ SmoothingKernel::SmoothingKernel(Type type, double h) : type_(type), h_(h) {
   }
 }
 
-SmoothingKernel SmoothingKernel::from_name(const std::string& name, double h) {
-  if (name == "quintic") return SmoothingKernel(Type::Quintic, h);
-  if (name == "wendland_c2") return SmoothingKernel(Type::WendlandC2, h);
-  throw ConfigError("/smoothing_kernel", "unknown smoothing kernel '" + name + "'; known: quintic, wendland_c2");
-}
-
 double SmoothingKernel::w(double r) const {
   const double q = r / h_;
-  if (type_ == Type::Quintic) {
+  if (type_ == Type::quintic) {
     if (q >= 3.0) return 0.0;
     const double a = 3.0 - q, b = 2.0 - q, c = 1.0 - q;
     double s = a * a * a * a * a;
@@ -40,7 +34,7 @@ double SmoothingKernel::w(double r) const {
 
 double SmoothingKernel::dw(double r) const {
   const double q = r / h_;
-  if (type_ == Type::Quintic) {
+  if (type_ == Type::quintic) {
     if (q >= 3.0) return 0.0;
     const double a = 3.0 - q, b = 2.0 - q, c = 1.0 - q;
     double s = -5.0 * a * a * a * a;

@@ -5,8 +5,12 @@
 //   f_ij = −(P_i/n_i² + P_j/n_j²) ∇_i w + μ_ij (v_i − v_j) (q_ij·∇_i w) / (n_i n_j |q_ij|²),
 // with ∇_i w = F q_ij, F = w'(r)/r, q_ij = q_i − q_j, so (q_ij·∇_i w)/|q_ij|² = F.
 // One definition, used by the direct SPH engine and by the stress quadratures.
+#include <array>
 #include <string>
+#include <string_view>
+#include <utility>
 
+#include "core/base/enum_names.hpp"
 #include "core/base/mesh.hpp"
 
 namespace closurelab {
@@ -14,23 +18,21 @@ namespace closurelab {
 // How the pair viscosity μ_ij of (5.1) combines unlike particles (two-phase flow, §7). Both give 2μ for like
 // particles, so single-phase results do not depend on the choice.
 enum class PairViscosityMean {
-  Arithmetic,  // μ_ij = μ_i + μ_j (twice the arithmetic mean; Morris et al. 1997)
-  Harmonic,    // μ_ij = 4 μ_i μ_j / (μ_i + μ_j) (twice the harmonic mean; continuous viscous flux across a
+  arithmetic,  // μ_ij = μ_i + μ_j (twice the arithmetic mean; Morris et al. 1997)
+  harmonic,    // μ_ij = 4 μ_i μ_j / (μ_i + μ_j) (twice the harmonic mean; continuous viscous flux across a
                // viscosity jump, as in finite-volume schemes)
 };
 
-// The schema's names of the choices ("arithmetic", "harmonic"); a ConfigError-free parse for resolved input.
-inline PairViscosityMean pair_viscosity_mean_from_name(const std::string& name) {
-  return name == "harmonic" ? PairViscosityMean::Harmonic : PairViscosityMean::Arithmetic;
-}
-inline const char* to_string(PairViscosityMean m) {
-  return m == PairViscosityMean::Harmonic ? "harmonic" : "arithmetic";
-}
+template <>
+struct EnumNames<PairViscosityMean> {
+  static constexpr std::array<std::pair<PairViscosityMean, std::string_view>, 2> table{
+      {{PairViscosityMean::arithmetic, "arithmetic"}, {PairViscosityMean::harmonic, "harmonic"}}};
+};
 
 // μ_ij of (5.1). Like particles take exactly μ_i + μ_j = 2μ under either mean (bitwise: single-phase runs do
 // not change with the option).
 inline double pair_viscosity(double mu_i, double mu_j, PairViscosityMean mean) {
-  if (mean == PairViscosityMean::Arithmetic || mu_i == mu_j) return mu_i + mu_j;
+  if (mean == PairViscosityMean::arithmetic || mu_i == mu_j) return mu_i + mu_j;
   return 4.0 * mu_i * mu_j / (mu_i + mu_j);
 }
 

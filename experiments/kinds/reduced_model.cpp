@@ -26,7 +26,7 @@ namespace {
 ParamSchema closure_schema() {
   return {object_param("deconvolver", json{{"name", "landweber"}, {"order", 0}}, "registered deconvolver and its parameters"),
           string_param("discretization", "coarse_coarse", "discretization of R_eta (par. 4.2)",
-                       {"coarse_coarse", "coarse_fine", "fine_fine"}),
+                       names_of<Discretization>()),
           number_param("noise_level", 0.0, "delta handed to the deconvolver's parameter rule", 0.0, {})};
 }
 
@@ -35,7 +35,7 @@ ParamSchema oracle_schema() {
                      "closure oracle: reconstruction R(v) + (V_d - R(v_d)) with V_d the direct SPH particle velocity"),
           string_param("boundary", "none", "boundary oracle: hold the wall-surface nodes or the whole wall band at "
                                            "the averaged direct SPH",
-                       {"none", "wall_nodes", "wall_band"})};
+                       names_of<BoundaryOracle>())};
 }
 
 ParamSchema reference_schema() {
@@ -96,9 +96,11 @@ class ReducedModel : public ExperimentKind {
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
     out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
     out["solver"] = resolve_section(cell, "solver", meso_solver_schema(), path);
+    check_time_loop(out["solver"], path + "/solver");
     out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
+    check_time_loop(out["reference"]["solver"], path + "/reference/solver");
     out["transient"] = resolve_section(cell, "transient", transient_schema(), path);
     out["oracle"] = resolve_section(cell, "oracle", oracle_schema(), path);
     if (uses_oracles(out) && !out["reference"]["direct_sph"].get<bool>())
@@ -113,11 +115,10 @@ class ReducedModel : public ExperimentKind {
         throw ConfigError(where, "snapshot times must be finite numbers, positive and ascending");
       previous = t.get<double>();
     }
-    // Cheap structural checks now (coarse mesh, quadrature fit) so that a bad cell fails before any runs.
-    auto deconv = reg.deconvolvers.create(out["closure"]["deconvolver"], path + "/closure/deconvolver");
-    auto quad = reg.quadratures.create(out["quadrature"], path + "/quadrature");
+    // Cheap structural checks now (coarse mesh, quadrature fit) so that a bad cell fails before any runs; the
+    // strategies are set up once, when the cell runs.
     try {
-      MesoSolver probe(*scene, *kernel, *deconv, *quad, options(out));
+      check_meso_solver(*scene, *kernel, *reg.quadratures.create(out["quadrature"], "/quadrature"), options(out));
     } catch (const ConfigError& e) {
       throw ConfigError(path + e.path(), e.message());
     }
@@ -144,7 +145,7 @@ class ReducedModel : public ExperimentKind {
     if (uses_oracles(cfg)) {
       MesoOracles o;
       o.closure = cfg.at("oracle").at("closure").get<bool>();
-      o.boundary = cfg.at("oracle").at("boundary").get<std::string>();
+      o.boundary = parse_name<BoundaryOracle>(cfg.at("oracle").at("boundary").get<std::string>(), "/oracle/boundary");
       o.averaged = direct->averaged;
       o.row_y = direct->row_y;
       o.row_velocity = direct->row_velocity;
@@ -153,10 +154,10 @@ class ReducedModel : public ExperimentKind {
     const MesoResult reduced = solver.run();
 
     json row;
-    row["status"] = (reduced.status == "converged" || reduced.status == "target_time") ? "ok" : reduced.status;
+    row["status"] = row_status(reduced.status);
     row["reduced_model"] = reduced.to_json();
     const int nn = static_cast<int>(reduced.y.size());
-    const double l1 = scene->wall_lo, l2 = scene->wall_hi, eta = scene->eta, peak = scene->analytic_peak;
+    const double l1 = scene->wall_lo, l2 = scene->wall_hi, peak = scene->analytic_peak;
     const bool walls = scene->has_walls;
     Eigen::VectorXd analytic(nn), analytic_avg(nn);
     std::vector<bool> interior(nn), band(nn), fluid(nn), every(nn, true);
@@ -166,9 +167,9 @@ class ReducedModel : public ExperimentKind {
       analytic[n] = scene->analytic_vx(y);
       analytic_avg[n] = average_by_quadrature(scene->analytic_vx, [&](double t) { return kernel->factor(t); }, r, y,
                                               walls ? l1 : y - r, walls ? l2 : y + r, scene->interfaces);
-      fluid[n] = !walls || (y > l1 + 1e-12 && y < l2 - 1e-12);  // wall nodes carry the imposed v̄ = 0
-      interior[n] = !walls || (y >= l1 + 3 * eta - 1e-12 && y <= l2 - 3 * eta + 1e-12);
-      band[n] = fluid[n] && !interior[n];
+      fluid[n] = scene->in_fluid(y);
+      interior[n] = scene->in_interior(y);
+      band[n] = scene->in_wall_band(y);
     }
     auto norms = [&](const Eigen::VectorXd& ref) {
       return json{{"all_nodes", error_norms(reduced.v, ref, every, peak).to_json()},
@@ -218,7 +219,7 @@ class ReducedModel : public ExperimentKind {
       for (std::size_t k = 0; k < t_star.size(); ++k) {
         json snap = {{"t_star", t_star[k]}, {"time", opt.snapshot_times[k]}};
         // A run that reached steady state before this time stays there: its final state stands in.
-        const bool reduced_has = k < reduced_snapshots.size() || reduced.status == "converged";
+        const bool reduced_has = k < reduced_snapshots.size() || reduced.status == Status::converged;
         const bool direct_has = k < direct_snapshots.size() || run.at("status") == "converged";
         if (reduced_has && direct_has) {
           const Eigen::VectorXd& vr = k < reduced_snapshots.size() ? reduced_snapshots[k].second : reduced.v;
@@ -318,51 +319,6 @@ class ReducedModel : public ExperimentKind {
 };
 
 }  // namespace
-
-// Defaults are MesoSolverOptions{}'s (one source; options(resolved defaults) == MesoSolverOptions{}, tested).
-ParamSchema meso_solver_schema() {
-  const MesoSolverOptions d;
-  return {number_param("kappa", d.kappa, "time-step coefficient of (5.21)-(5.22)", 0.0, 1.0, true),
-          number_param("spacing_over_eta", d.spacing_over_eta, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0),
-          string_param("scheme", d.scheme, "paper: (5.11)-(5.14); staggered: conservative flux form", {"paper", "staggered"}),
-          string_param("mode", d.to_steady_state ? "steady" : "target_time", "steady or target_time", {"steady", "target_time"}),
-          number_param("target_time", d.target_time, "model time in target_time mode", 0.0, {}),
-          number_param("steady_tolerance", d.steady_tolerance, "steady: max relative change over the window", 0.0, 1.0, true),
-          integer_param("steady_window", d.steady_window, "steady: window in coarse steps", 1, {}),
-          number_param("max_time", d.max_time, "give up after this model time", 0.0, {}, true),
-          bool_param("wall_constraint_forces", d.wall_constraint_forces,
-                     "add the averaged constraint forces holding the wall particles (DESIGN.md par. 6)"),
-          string_param("wall_node_value", d.wall_node_value,
-                       "reported v at the wall-surface nodes: imposed (5.6) zero, or reconstructed (the average of the "
-                       "closure's reconstruction there; an output only)",
-                       {"imposed", "reconstructed"}),
-          string_param("balance", d.balance,
-                       "right-hand side: stress_divergence (the paper: finite difference of the quadrature's T_int) or "
-                       "force_density (exact divergence of (2.13): the averaged pair forces on the fluid particles, "
-                       "wall constraint forces included; the quadrature is then unused)",
-                       {"stress_divergence", "force_density"}),
-          string_param("time_integration", d.time_integration,
-                       "explicit (forward Euler, the paper) or backward_euler (implicit; needs a closure with fixed "
-                       "parameters, whose rate is affine in v)",
-                       {"explicit", "backward_euler"})};
-}
-
-MesoSolverOptions meso_options_from(const json& s) {
-  MesoSolverOptions o;
-  o.kappa = s.at("kappa").get<double>();
-  o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
-  o.scheme = s.at("scheme").get<std::string>();
-  o.to_steady_state = s.at("mode") == "steady";
-  o.target_time = s.at("target_time").get<double>();
-  o.steady_tolerance = s.at("steady_tolerance").get<double>();
-  o.steady_window = s.at("steady_window").get<int>();
-  o.max_time = s.at("max_time").get<double>();
-  o.wall_constraint_forces = s.at("wall_constraint_forces").get<bool>();
-  o.wall_node_value = s.at("wall_node_value").get<std::string>();
-  o.balance = s.at("balance").get<std::string>();
-  o.time_integration = s.at("time_integration").get<std::string>();
-  return o;
-}
 
 std::unique_ptr<ExperimentKind> make_reduced_model_experiment() { return std::make_unique<ReducedModel>(); }
 

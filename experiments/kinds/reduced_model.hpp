@@ -9,9 +9,4 @@ namespace closurelab {
 // analytic solution, its average, and the averaged direct SPH of the same scene (run in the same process,
 // which gives the speed-up).
 std::unique_ptr<ExperimentKind> make_reduced_model_experiment();
-
-// The reduced model's solver section ("solver": {...}): its schema (defaults from MesoSolverOptions{}) and
-// the options read from a resolved section.
-ParamSchema meso_solver_schema();
-MesoSolverOptions meso_options_from(const json& resolved_solver);
 }  // namespace closurelab

@@ -137,7 +137,7 @@ class SphValidation : public ExperimentKind {
     if (!scene->analytic_vx) throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
     build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["solver"] = resolve_section(cell, "solver", sph_solver_schema(), path);
-    check_sph_solver(out["solver"], path + "/solver");
+    check_time_loop(out["solver"], path + "/solver");
     out["averaging"] = resolve_section(cell, "averaging", averaging_schema(), path);
     return out;
   }
@@ -154,7 +154,7 @@ class SphValidation : public ExperimentKind {
     const ParticleSystem& ps = direct.particles;
     const SphRunResult& sph = direct.run;
     json row;
-    row["status"] = (sph.status == "converged" || sph.status == "target_time") ? "ok" : sph.status;
+    row["status"] = row_status(sph.status);
     row["direct_sph"] = sph.to_json();
     if (!sph.message.empty()) row["message"] = sph.message;
     row["scene_derived"] = {{"dx", scene->dx},           {"eta", scene->eta},
@@ -162,13 +162,11 @@ class SphValidation : public ExperimentKind {
                             {"h", scene->h},             {"sound_speed", scene->sound_speed},
                             {"analytic_peak", scene->analytic_peak}, {"particle_mass", scene->particle_mass()}};
     if (!scene->interfaces.empty()) row["scene_derived"]["interfaces"] = scene->interfaces;
-    if (sph.status == "numerical_issue") return row;
+    if (sph.status == Status::numerical_issue) return row;
 
-    const double l1 = scene->wall_lo, l2 = scene->wall_hi, eta = scene->eta, peak = scene->analytic_peak;
+    const double l1 = scene->wall_lo, l2 = scene->wall_hi, peak = scene->analytic_peak;
     const bool walls = scene->has_walls;
-    const auto in_interior = [&](double y) { return !walls || (y >= l1 + 3.0 * eta && y <= l2 - 3.0 * eta); };
-    const auto in_channel = [&](double y) { return !walls || (y > l1 && y < l2); };
-    const double support = SmoothingKernel::from_name(scene->smoothing_kernel, scene->h).support();
+    const double support = scene->smoothing_kernel().support();
     if (!scene->interfaces.empty()) row["interfaces"] = interface_check(*scene, ps, support);
 
     // Particles against (5.15)/(D.3).
@@ -180,7 +178,7 @@ class SphValidation : public ExperimentKind {
     for (std::size_t k = 0; k < py.size(); ++k) {
       u[k] = pv[k];
       ref[k] = scene->analytic_vx(py[k]);
-      interior[k] = in_interior(py[k]);
+      interior[k] = scene->in_interior(py[k]);
       band[k] = !interior[k];
     }
     json errors;
@@ -217,8 +215,8 @@ class SphValidation : public ExperimentKind {
       avg_ref[n] =
           average_by_quadrature(scene->analytic_vx, phi, r, y, walls ? l1 : y - r, walls ? l2 : y + r, scene->interfaces);
       point_ref[n] = scene->analytic_vx(y);
-      node_channel[n] = in_channel(y);
-      node_interior[n] = in_interior(y);
+      node_channel[n] = scene->in_fluid(y);
+      node_interior[n] = scene->in_interior(y);
       node_band[n] = node_channel[n] && !node_interior[n];
       profile["y"].push_back(y);
       profile["sph_average"].push_back(f.vx[n]);

@@ -10,7 +10,7 @@ Every number is read from the table.
 """
 import sys
 
-from summary_util import fmt, get, load_table
+from summary_util import fmt, get, load_table, pyplot_or_none
 
 
 def pct(x):
@@ -96,11 +96,8 @@ def main(path, prefix):
         out.append(f"| {name} | {pct(e)} | {pct(removed)} |")
     with open(prefix + ".md", "w") as f:
         f.write("\n".join(out) + "\n")
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
+    plt = pyplot_or_none()
+    if plt is None:
         return
     labels = [r.get("label", "") for r in rows]
     values = [max(err(r, "all_nodes") or 0, 1e-5) * 100 for r in rows]

@@ -12,7 +12,7 @@ one shared core, so ratios are meaningful within one table only.
 import json
 import sys
 
-from summary_util import fmt, load_table
+from summary_util import fmt, load_table, pyplot_or_none
 
 
 def error_of(row, ref, subset):
@@ -69,12 +69,8 @@ def main(path, prefix, key=None):
         lines.append(f"\nMost accurate: {best[2]['label']} (error {fmt(best[1])}, {fmt(best[0])} s). "
                      f"Fastest: {fastest[2]['label']} ({fmt(fastest[0])} s, error {fmt(fastest[1])}).")
     open(prefix + ".md", "w").write("\n".join(lines) + "\n")
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("matplotlib not available: no figure", file=sys.stderr)
+    plt = pyplot_or_none()
+    if plt is None:
         return
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for t, e, r in pts:

@@ -7,7 +7,7 @@ writes OUT_PREFIX.md and OUT_PREFIX.png. Every number is read from the table.
 import json
 import sys
 
-from summary_util import fmt, get, load_table
+from summary_util import fmt, get, load_table, pyplot_or_none
 
 
 def main(path, prefix):
@@ -31,12 +31,8 @@ def main(path, prefix):
             f"{fmt(get(e, 'vs_averaged_direct_sph', 'peak_relative_difference'))} | {fmt(c.get('steps'))} | {fmt(c.get('dt'))} | "
             f"{fmt(c.get('wall_seconds'))} | {fmt(c.get('setup_seconds'))} | {fmt(c.get('direct_sph_wall_seconds'))} | {fmt(c.get('speed_up'))} |")
     open(prefix + ".md", "w").write("\n".join(lines) + "\n")
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("matplotlib not available: no figure", file=sys.stderr)
+    plt = pyplot_or_none()
+    if plt is None:
         return
     rows = [r for r in table["rows"] if "profile" in r]
     ncols = min(4, max(1, len(rows)))

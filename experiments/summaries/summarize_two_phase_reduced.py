@@ -11,7 +11,7 @@ import json
 import os
 import sys
 
-from summary_util import fmt, get, load_table
+from summary_util import fmt, get, load_table, pyplot_or_none
 
 PAPER = {"case1": 0.10, "case2": 0.06, "case3": 0.02}  # par. 7, second-order closure, peak-velocity metric
 PAPER_CLOSURE = "landweber n=2 (paper)"
@@ -116,12 +116,8 @@ def main(args):
                      f"{fmt(get(e, 'vs_averaged_analytic', 'all', 'max_rel'))} | {fmt(total_seconds(r))} | {fmt(get(r, 'cost', 'direct_sph_wall_seconds'))} |")
     os.makedirs(out, exist_ok=True)
     open(os.path.join(out, "summary.md"), "w").write("\n".join(L) + "\n")
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("matplotlib not available: no figures", file=sys.stderr)
+    plt = pyplot_or_none()
+    if plt is None:
         return
     for c in cases:
         base = [r for r in by_case[c] if label_of(r) == PAPER_CLOSURE]

@@ -1,6 +1,7 @@
 """Helpers shared by the summarize_*.py scripts (imported from the scripts' own folder)."""
 import json
 import math
+import sys
 
 
 def fmt(x, digits=3):
@@ -74,3 +75,15 @@ def dirty_mark(row):
     """" [dirty build]" for a row computed by a build with uncommitted changes (for views that print no label)."""
     p = row.get("provenance")
     return " [dirty build]" if isinstance(p, dict) and p.get("dirty") else ""
+
+
+def pyplot_or_none():
+    """matplotlib.pyplot on the Agg backend, or None (with a note on stderr) where matplotlib is missing."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        return plt
+    except ImportError:
+        print("matplotlib not available: no figure", file=sys.stderr)
+        return None

@@ -31,6 +31,7 @@
 
 #include "core/sph/scene.hpp"
 #include "core/closure/stress_quadrature.hpp"
+#include "core/averaging/bond_weights.hpp"
 
 namespace closurelab {
 
@@ -40,10 +41,11 @@ class CoarseQuadrature : public StressQuadrature {
   // refine_walls: R-rows within one SPH support of a wall at full resolution (see above).
   CoarseQuadrature(int stride_x, int stride_y, bool refine_walls = false);
   std::string name() const override { return "coarse"; }
+  void check(const Scene& scene, const TensorMesh2D& nodes, const std::vector<std::string>& components) const override;
   void setup(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& nodes,
              const std::vector<std::string>& components) override;
-  std::map<std::string, Eigen::VectorXd> evaluate(const VelocitySampler& v) override;
-  QuadratureCost cost() const override { return cost_; }
+  QuadratureResult evaluate(const VelocitySampler& v) override;
+  QuadratureCost setup_cost() const override { return cost_; }
 
   // The coarse total virial Σ_(β,j) ½ (N/N_C) f ⊗ ρ_j: the integral of T_int over a periodic domain.
   Eigen::Matrix2d virial(const VelocitySampler& v) const;
@@ -63,21 +65,25 @@ class CoarseQuadrature : public StressQuadrature {
     double mass;    // ½ × the particles the base site stands for (its share of the virial)
     double beta;  // ghost-velocity walls (a fluid–wall pair): v_a − v_b = ±β v_fluid as in direct SPH; else 0
   };
+  struct Run {
+    int centre, sites;  // centre in half lattice units; the lattice sites it stands for
+  };
+  struct RGrid {
+    std::vector<Run> cols, rows;
+  };
+  RGrid r_grid(const Scene& scene) const;
+  void set_pair_physics(const Scene& scene, int ha, int hb, const Vec2& qa, const Vec2& qb, VirtualPair& p) const;
   Eigen::Matrix2Xd sample(const VelocitySampler& v) const;
   Vec2 pair_force(const VirtualPair& p, const Eigen::Matrix2Xd& v) const;
 
   int stride_x_, stride_y_;
   bool refine_walls_;
-  std::vector<std::string> components_;
-  std::vector<std::pair<int, int>> comp_index_;
-  int node_count_ = 0, r_nodes_ = 0, offsets_ = 0;
+  int r_nodes_ = 0, offsets_ = 0;
   double coarsening_ = 0.0;  // N/N_C
   double p_over_n2_ = 0.0, n_star_ = 0.0;
   std::vector<Vec2> points_;
   std::vector<VirtualPair> pairs_;
-  std::vector<std::int64_t> weight_start_;  // CSR by virtual pair; weights include ½ N/N_C
-  std::vector<std::int32_t> weight_node_;
-  std::vector<double> weight_value_;
+  BondWeightTable weights_;  // by virtual pair; the weights include ½ N/N_C
   QuadratureCost cost_;
 };
 

@@ -10,32 +10,29 @@
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_engine.hpp"
 #include "core/closure/stress_quadrature.hpp"
+#include "core/averaging/bond_weights.hpp"
 
 namespace closurelab {
 
 class ExactQuadrature : public StressQuadrature {
  public:
   std::string name() const override { return "exact"; }
+  void check(const Scene& scene, const TensorMesh2D& nodes, const std::vector<std::string>& components) const override;
   void setup(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& nodes,
              const std::vector<std::string>& components) override;
-  std::map<std::string, Eigen::VectorXd> evaluate(const VelocitySampler& v) override;
-  QuadratureCost cost() const override { return cost_; }
+  QuadratureResult evaluate(const VelocitySampler& v) override;
+  QuadratureCost setup_cost() const override { return cost_; }
 
-  std::size_t pair_count() const { return weight_start_.empty() ? 0 : weight_start_.size() - 1; }
+  std::size_t pair_count() const { return weights_.bonds(); }
   std::size_t particle_count() const { return ps_.size(); }
 
  private:
   std::unique_ptr<Scene> scene_;  // owned copy: the engine keeps a reference
   ParticleSystem ps_;
   std::unique_ptr<SphEngine> engine_;
-  std::vector<std::string> components_;
-  std::vector<std::pair<int, int>> comp_index_;
-  int node_count_ = 0;
   std::vector<std::int32_t> moving_;  // particles whose velocity comes from the sampler
   std::vector<Vec2> moving_points_;
-  std::vector<std::int64_t> weight_start_;  // CSR by pair (the engine's pair order)
-  std::vector<std::int32_t> weight_node_;
-  std::vector<double> weight_value_;
+  BondWeightTable weights_;  // by pair, in the engine's pair order
   QuadratureCost cost_;
 };
 

@@ -5,7 +5,7 @@
 
 #include <cctype>
 
-#include "tests/integration/cli_run.hpp"
+#include "tests/support/cli_run.hpp"
 
 using namespace closurelab::testing;
 

@@ -7,7 +7,7 @@
 #include <sys/stat.h>
 
 #include "core/base/params.hpp"
-#include "tests/integration/cli_run.hpp"
+#include "tests/support/cli_run.hpp"
 
 namespace fs = std::filesystem;
 using namespace closurelab::testing;

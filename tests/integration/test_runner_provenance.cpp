@@ -6,7 +6,7 @@
 #include <set>
 
 #include "core/base/params.hpp"
-#include "tests/integration/cli_run.hpp"
+#include "tests/support/cli_run.hpp"
 
 namespace fs = std::filesystem;
 using closurelab::json;

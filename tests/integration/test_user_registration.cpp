@@ -5,7 +5,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "cli_run.hpp"
+#include "tests/support/cli_run.hpp"
 #include "core/closure/deconvolver.hpp"
 #include "experiments/runner/closurelab_main.hpp"
 

@@ -23,7 +23,7 @@ TEST(DeconvolutionOfSphData, RecoversParticleRowsFromTheirAverages) {
   SphRunOptions opt;
   opt.to_steady_state = false;
   opt.target_time = 1.0;
-  ASSERT_EQ(run_direct_sph(*scene, ps, opt).status, "target_time");
+  ASSERT_EQ(run_direct_sph(*scene, ps, opt).status, Status::target_time);
 
   const auto kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", scene->eta}}, "/kernel");
   const UniformMesh1D coarse = UniformMesh1D::cell_centred(0.0, 1.0, 32, false);  // spacing η'/2

@@ -75,7 +75,7 @@ TEST(DirectSph, PeriodicForceMatchesD3) {
 
 TEST(DirectSph, SteadyStateDetectionAgreesWithALongRun) {
   const Profile steady = run_channel("poiseuille-uniform", 32, "ghost_velocity", 0.0);
-  ASSERT_EQ(steady.run.status, "converged");
+  ASSERT_EQ(steady.run.status, Status::converged);
   const Profile long_run = run_channel("poiseuille-uniform", 32, "ghost_velocity", 3.0);
   EXPECT_GT(long_run.run.time, steady.run.time);
   // Converged to 1e-5 per 1000 steps. Lattice rows sliding past each other (and past the wall rows) keep a

@@ -193,7 +193,7 @@ TEST(LayeredDirectSph, SteadyProfileMatchesThePiecewiseParabolasAndInterfacesSta
     const LayeredRun r = run_layered("case3", mean, 0.012);
     std::cout << mean << ": max rel error " << r.max_rel << ", peak " << r.peak_rel << ", max y-shift "
               << r.max_shift_dx << " eps', steps " << r.run.steps << "\n";
-    ASSERT_EQ(r.run.status, "target_time");
+    ASSERT_EQ(r.run.status, Status::target_time);
     // Interfaces stay put: at Re ~ 1e-5 the rows only slide along x, and the unlike-pair repulsion of (7.1)
     // moves them by ~1e-9 ε' in this time (measured); no particle leaves its phase's rows.
     EXPECT_EQ(r.strayed, 0);

@@ -61,7 +61,7 @@ TEST(ReducedModel, KolmogorovFollowsTheLandweberPrediction) {
   double first = 0.0;
   for (int n : {0, 1, 2, 5}) {
     const KolmogorovRun r = run_kolmogorov(n, "exact", 0.25);
-    ASSERT_EQ(r.result.status, "target_time") << r.result.message;
+    ASSERT_EQ(r.result.status, Status::target_time) << r.result.message;
     const double rel = r.amplitude_ratio / r.predicted;
     std::cout << "order " << n << ": amplitude ratio " << r.amplitude_ratio << ", predicted " << r.predicted
               << ", relative difference " << rel - 1 << "\n";
@@ -83,10 +83,10 @@ TEST(ReducedModel, StaggeredSchemeReachesASmoothSteadyStateInTheChannel) {
   auto deconv = reg.deconvolvers.create(json{{"name", "landweber"}, {"order", 0}}, "/deconvolver");
   auto quad = reg.quadratures.create(json{{"name", "exact"}}, "/quadrature");
   MesoSolverOptions opt;
-  opt.scheme = "staggered";
+  opt.scheme = MesoScheme::staggered;
   MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
   const MesoResult r = solver.run();
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   const Eigen::Index n = r.v.size();
   for (Eigen::Index k = 0; k < n / 2; ++k) {
     EXPECT_GT(r.v[k + 1], r.v[k]) << "node " << k;
@@ -107,7 +107,7 @@ TEST(ReducedModel, WallConstraintMapEqualsTheDirectPairSweep) {
   auto deconv = reg.deconvolvers.create(json{{"name", "landweber"}, {"order", 1}}, "/deconvolver");
   auto quad = reg.quadratures.create(json{{"name", "exact"}}, "/quadrature");
   MesoSolverOptions opt;
-  opt.scheme = "staggered";
+  opt.scheme = MesoScheme::staggered;
   opt.wall_constraint_forces = true;
   MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
   const Eigen::VectorXd y = solver.coarse_mesh().nodes();
@@ -151,11 +151,11 @@ TEST(ReducedModel, FirstOrderBeatsZeroOrderUnderThePeriodicForce) {
     auto deconv = reg.deconvolvers.create(json{{"name", "landweber"}, {"order", order}}, "/deconvolver");
     auto quad = reg.quadratures.create(json{{"name", "exact"}}, "/quadrature");
     MesoSolverOptions opt;
-    opt.scheme = "staggered";
+    opt.scheme = MesoScheme::staggered;
     opt.wall_constraint_forces = true;
     MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
     const MesoResult r = solver.run();
-    ASSERT_EQ(r.status, "converged") << r.message;
+    ASSERT_EQ(r.status, Status::converged) << r.message;
     double e = 0.0;
     for (Eigen::Index n = 1; n + 1 < r.y.size(); ++n) {
       const double avg = average_by_quadrature(scene->analytic_vx, [&](double t) { return kernel->factor(t); },
@@ -185,13 +185,13 @@ TEST(ReducedModel, SetupIsIndependentOfTheStripWidth) {
     auto deconv = reg.deconvolvers.create(json{{"name", "landweber"}, {"order", 1}}, "/deconvolver");
     auto quad = reg.quadratures.create(json{{"name", "coarse"}, {"stride_x", 0}, {"stride_y", 4}}, "/quadrature");
     MesoSolverOptions opt;
-    opt.scheme = "staggered";
+    opt.scheme = MesoScheme::staggered;
     opt.wall_constraint_forces = true;
     opt.to_steady_state = false;
     opt.target_time = 0.05;
     MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
     const MesoResult r = solver.run();
-    ASSERT_EQ(r.status, "target_time") << r.message;
+    ASSERT_EQ(r.status, Status::target_time) << r.message;
     v[i++] = r.v;
   }
   EXPECT_LT((v[0] - v[1]).cwiseAbs().maxCoeff(), 1e-10 * v[0].cwiseAbs().maxCoeff());

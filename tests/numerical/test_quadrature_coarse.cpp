@@ -7,7 +7,7 @@
 #include "strategies/kernels/gaussian_kernel.hpp"
 #include "strategies/quadrature/coarse_quadrature.hpp"
 #include "strategies/quadrature/exact_quadrature.hpp"
-#include "tests/numerical/test_quadrature_support.hpp"
+#include "tests/support/quadrature_support.hpp"
 
 using namespace closurelab;
 using namespace closurelab::quadrature_test;
@@ -43,15 +43,15 @@ TEST(CoarseQuadrature, FinestGridIsTheExactPairSum) {
     EXPECT_DOUBLE_EQ(column.coarsening(), 12.0);  // one R column per strip of n_x = 12 columns
     EXPECT_DOUBLE_EQ(grid.coarsening(), 1.0);
     {
-      const auto [diff, scale] = max_difference(column.evaluate(x_invariant), exact.evaluate(x_invariant));
+      const auto [diff, scale] = max_difference(column.evaluate(x_invariant).stress, exact.evaluate(x_invariant).stress);
       EXPECT_LE(diff, 1e-12 * scale) << walls << " x-integrated";
     }
     {
-      const auto [diff, scale] = max_difference(grid.evaluate(general), exact.evaluate(general));
+      const auto [diff, scale] = max_difference(grid.evaluate(general).stress, exact.evaluate(general).stress);
       EXPECT_LE(diff, 1e-12 * scale) << walls << " 2D grid";
     }
     {
-      const auto [diff, scale] = max_difference(refined.evaluate(general), exact.evaluate(general));
+      const auto [diff, scale] = max_difference(refined.evaluate(general).stress, exact.evaluate(general).stress);
       EXPECT_LE(diff, 1e-12 * scale) << walls << " 2D grid, fine wall bands";
     }
   }
@@ -69,12 +69,12 @@ TEST(CoarseQuadrature, VirialIdentityOnAPeriodicBox) {
   const GaussianKernel k(0.08);
   ExactQuadrature exact;
   exact.setup(s, k, mesh, kAll);
-  const auto te = exact.evaluate(sampler);
+  const auto te = exact.evaluate(sampler).stress;
   for (const auto& [sx, sy] : std::vector<std::pair<int, int>>{{1, 1}, {2, 2}, {4, 2}, {8, 8}}) {
     CoarseQuadrature q(sx, sy);
     q.setup(s, k, mesh, kAll);
     EXPECT_DOUBLE_EQ(q.coarsening(), sx * sy);
-    const auto t = q.evaluate(sampler);
+    const auto t = q.evaluate(sampler).stress;
     const Eigen::Matrix2d virial = q.virial(sampler);
     const double scale = virial.cwiseAbs().maxCoeff();
     for (const auto& c : kAll) {
@@ -101,15 +101,15 @@ TEST(CoarseQuadrature, ConvergesToExactAsTheRGridRefines) {
   const auto sampler = sampler_of(*s, [&](const Vec2& p) { return Vec2(s->analytic_vx(p.y()), 0.0); });
   ExactQuadrature exact;
   exact.setup(*s, k, mesh, {"xy"});
-  const Eigen::VectorXd te = exact.evaluate(sampler).at("xy");
+  const Eigen::VectorXd te = exact.evaluate(sampler).stress.at("xy");
   const double scale = te.cwiseAbs().maxCoeff();
   std::map<int, double> err, fine;
   for (int stride : {1, 2, 3, 4, 6, 8, 12, 16}) {
     CoarseQuadrature q(0, stride), qf(0, stride, true);
     q.setup(*s, k, mesh, {"xy"});
     qf.setup(*s, k, mesh, {"xy"});
-    err[stride] = (q.evaluate(sampler).at("xy") - te).cwiseAbs().maxCoeff() / scale;
-    fine[stride] = (qf.evaluate(sampler).at("xy") - te).cwiseAbs().maxCoeff() / scale;
+    err[stride] = (q.evaluate(sampler).stress.at("xy") - te).cwiseAbs().maxCoeff() / scale;
+    fine[stride] = (qf.evaluate(sampler).stress.at("xy") - te).cwiseAbs().maxCoeff() / scale;
     std::printf("stride %2d  N/N_C(strip) %5.0f  max rel err %.3e | refined walls: N/N_C %5.1f  err %.3e\n", stride,
                 q.coarsening(), err[stride], qf.coarsening(), fine[stride]);
   }
@@ -138,13 +138,13 @@ TEST(CoarseQuadrature, TwoPhaseLayersAtOddAndEvenStrides) {
     const auto sampler = sampler_of(*s, [&](const Vec2& p) { return Vec2(s->analytic_vx(p.y()), 0.0); });
     ExactQuadrature exact;
     exact.setup(*s, k, mesh, {"xy"});
-    const Eigen::VectorXd te = exact.evaluate(sampler).at("xy");
+    const Eigen::VectorXd te = exact.evaluate(sampler).stress.at("xy");
     const double scale = te.cwiseAbs().maxCoeff();
     std::map<int, double> err;
     for (int stride : {1, 2, 4}) {
       CoarseQuadrature q(0, stride);
       q.setup(*s, k, mesh, {"xy"});
-      err[stride] = (q.evaluate(sampler).at("xy") - te).cwiseAbs().maxCoeff() / scale;
+      err[stride] = (q.evaluate(sampler).stress.at("xy") - te).cwiseAbs().maxCoeff() / scale;
       std::printf("%s mean, stride %d: max rel err %.3e\n", mean, stride, err[stride]);
     }
     EXPECT_LE(err[1], 1e-12) << mean;

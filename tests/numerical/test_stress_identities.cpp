@@ -11,7 +11,7 @@
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_engine.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"
-#include "tests/numerical/test_quadrature_support.hpp"
+#include "tests/support/quadrature_support.hpp"
 
 using namespace closurelab;
 

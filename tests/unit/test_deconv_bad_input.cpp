@@ -4,6 +4,7 @@
 
 #include <limits>
 
+#include "tests/support/config_error.hpp"
 #include "core/closure/deconvolver.hpp"
 #include "core/base/errors.hpp"
 #include "core/closure/forward_operator.hpp"
@@ -14,14 +15,7 @@ using namespace closurelab;
 
 namespace {
 const auto& decon() { return builtin_registry().deconvolvers; }
-std::string config_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test_support::config_error;
 ForwardOperator small_operator() {
   const GaussianKernel k(0.1);
   const UniformMesh1D m = UniformMesh1D::cell_centred(0, 1, 20, false);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tests/support/config_error.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/json_reader.hpp"
 #include "core/base/memory_limit.hpp"
@@ -19,14 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string config_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test_support::config_error;
 
 fs::path scratch(const std::string& name, const std::string& text) {
   const fs::path d = fs::temp_directory_path() / ("closurelab_input_guards_" + std::to_string(getpid()));

@@ -143,7 +143,7 @@ TEST(Erfcx, MatchesDefinitionWhereItIsRepresentable) {
 TEST(SmoothingKernel, NormalizedWithConsistentDerivative) {  // (5.2)
   for (const char* name : {"quintic", "wendland_c2"}) {
     const double h = 0.01;
-    const SmoothingKernel w = SmoothingKernel::from_name(name, h);
+    const SmoothingKernel w = SmoothingKernel(parse_name<SmoothingKernel::Type>(name, "/smoothing_kernel"), h);
     const double mass = 2 * M_PI * integrate([&](double r) { return w.w(r) * r; }, 0.0, w.support());
     EXPECT_NEAR(mass, 1.0, 1e-12) << name;
     for (double r : {0.3 * h, 1.2 * h, 1.9 * h}) {

@@ -33,19 +33,19 @@ ConfigError scene_error(const json& p) {
 }  // namespace
 
 TEST(PairViscosity, ArithmeticAndHarmonicMeans) {
-  EXPECT_DOUBLE_EQ(pair_viscosity(100.0, 200.0, PairViscosityMean::Arithmetic), 300.0);
-  EXPECT_DOUBLE_EQ(pair_viscosity(100.0, 200.0, PairViscosityMean::Harmonic), 4.0 * 100.0 * 200.0 / 300.0);
-  EXPECT_DOUBLE_EQ(pair_viscosity(200.0, 100.0, PairViscosityMean::Harmonic),
-                   pair_viscosity(100.0, 200.0, PairViscosityMean::Harmonic));
+  EXPECT_DOUBLE_EQ(pair_viscosity(100.0, 200.0, PairViscosityMean::arithmetic), 300.0);
+  EXPECT_DOUBLE_EQ(pair_viscosity(100.0, 200.0, PairViscosityMean::harmonic), 4.0 * 100.0 * 200.0 / 300.0);
+  EXPECT_DOUBLE_EQ(pair_viscosity(200.0, 100.0, PairViscosityMean::harmonic),
+                   pair_viscosity(100.0, 200.0, PairViscosityMean::harmonic));
   // Like particles: exactly 2μ under either mean (single-phase results cannot depend on the option).
   for (double mu : {1.0, 0.1, 3.7, 200.0}) {
-    EXPECT_EQ(pair_viscosity(mu, mu, PairViscosityMean::Arithmetic), mu + mu);
-    EXPECT_EQ(pair_viscosity(mu, mu, PairViscosityMean::Harmonic), mu + mu);
+    EXPECT_EQ(pair_viscosity(mu, mu, PairViscosityMean::arithmetic), mu + mu);
+    EXPECT_EQ(pair_viscosity(mu, mu, PairViscosityMean::harmonic), mu + mu);
   }
   // The harmonic mean never exceeds the arithmetic one and is dominated by the smaller viscosity.
-  EXPECT_LT(pair_viscosity(1.0, 1e6, PairViscosityMean::Harmonic), 4.0);
-  EXPECT_EQ(pair_viscosity_mean_from_name("harmonic"), PairViscosityMean::Harmonic);
-  EXPECT_EQ(pair_viscosity_mean_from_name("arithmetic"), PairViscosityMean::Arithmetic);
+  EXPECT_LT(pair_viscosity(1.0, 1e6, PairViscosityMean::harmonic), 4.0);
+  EXPECT_EQ(parse_name<PairViscosityMean>("harmonic", ""), PairViscosityMean::harmonic);
+  EXPECT_EQ(parse_name<PairViscosityMean>("arithmetic", ""), PairViscosityMean::arithmetic);
 }
 
 TEST(LayeredScene, GeometryPhasesAndDefaults) {
@@ -61,7 +61,7 @@ TEST(LayeredScene, GeometryPhasesAndDefaults) {
   EXPECT_EQ(s->interfaces.size(), 10u);
   EXPECT_NEAR(s->interfaces[0], wall + 30 * dx, 1e-14);
   EXPECT_NEAR(s->interfaces[1], wall + 39 * dx, 1e-14);
-  EXPECT_EQ(s->pair_viscosity_mean, PairViscosityMean::Arithmetic);
+  EXPECT_EQ(s->pair_viscosity_mean, PairViscosityMean::arithmetic);
   ASSERT_TRUE(s->van_der_waals.has_value());
   EXPECT_DOUBLE_EQ(s->max_viscosity(), 200.0);
 
@@ -78,7 +78,7 @@ TEST(LayeredScene, GeometryPhasesAndDefaults) {
   }
   EXPECT_EQ(layer_particles, 5 * 9 * 12);
   EXPECT_DOUBLE_EQ(s->viscosity_at(Vec2(0.0, 0.01)), 200.0);  // walls: the more viscous phase
-  EXPECT_EQ(layered(json{{"pair_viscosity_mean", "harmonic"}})->pair_viscosity_mean, PairViscosityMean::Harmonic);
+  EXPECT_EQ(layered(json{{"pair_viscosity_mean", "harmonic"}})->pair_viscosity_mean, PairViscosityMean::harmonic);
 }
 
 TEST(LayeredScene, SingleScenesKeepOnePhase) {

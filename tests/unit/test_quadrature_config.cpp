@@ -6,7 +6,7 @@
 #include "strategies/kernels/gaussian_kernel.hpp"
 #include "strategies/quadrature/coarse_quadrature.hpp"
 #include "strategies/quadrature/exact_quadrature.hpp"
-#include "tests/numerical/test_quadrature_support.hpp"
+#include "tests/support/quadrature_support.hpp"
 
 using namespace closurelab;
 using namespace closurelab::quadrature_test;
@@ -90,12 +90,21 @@ TEST(QuadratureConfig, MisuseIsReportedNotIgnored) {
   const GaussianKernel k(s->eta);
   ExactQuadrature q;
   const VelocitySampler none = [](const std::vector<Vec2>&) { return Eigen::Matrix2Xd(2, 0); };
-  EXPECT_THROW(q.evaluate(none), std::logic_error);
+  EXPECT_THROW(q.evaluate(none), std::logic_error);  // before setup
   q.setup(*s, k, column_mesh(s->box, s->eta), {"xy"});
-  EXPECT_THROW(q.evaluate(none), NumericalError);
+  EXPECT_THROW(q.evaluate(none), std::logic_error);  // a sampler that breaks its contract
   CoarseQuadrature c(0, 4);
   c.setup(*s, k, column_mesh(s->box, s->eta), {"xy"});
-  EXPECT_THROW(c.evaluate(none), NumericalError);
+  EXPECT_THROW(c.evaluate(none), std::logic_error);
+  // A non-finite velocity field is a numerical issue with a reason, as in a deconvolution.
+  const VelocitySampler nan = [](const std::vector<Vec2>& p) {
+    return Eigen::Matrix2Xd::Constant(2, static_cast<Eigen::Index>(p.size()), std::nan(""));
+  };
+  for (StressQuadrature* quad : std::initializer_list<StressQuadrature*>{&q, &c}) {
+    const QuadratureResult r = quad->evaluate(nan);
+    EXPECT_EQ(r.status, Status::numerical_issue);
+    EXPECT_NE(r.message.find("non-finite"), std::string::npos) << r.message;
+  }
   // The cost of the coarse quadrature does not depend on N: the same R-grid on a strip 8x wider.
   const auto wide = channel(48, 1.0 / 16, 96);
   CoarseQuadrature c2(0, 4);

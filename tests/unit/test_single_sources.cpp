@@ -5,6 +5,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/registry.hpp"
 #include "core/closure/deconvolver.hpp"
+#include "core/closure/parameter_choice.hpp"
 #include "core/sph/sph_run.hpp"
 #include "experiments/kinds/reduced_model.hpp"
 #include "experiments/runner/cell_config.hpp"
@@ -32,10 +33,41 @@ TEST(SingleSource, ReducedSolverSchemaDefaultsAreTheOptionsDefaults) {
   EXPECT_EQ(r.steady_tolerance, d.steady_tolerance);
   EXPECT_EQ(r.steady_window, d.steady_window);
   EXPECT_EQ(r.max_time, d.max_time);
+  EXPECT_EQ(r.max_steps, d.max_steps);
   EXPECT_EQ(r.wall_constraint_forces, d.wall_constraint_forces);
   EXPECT_EQ(r.wall_node_value, d.wall_node_value);
   EXPECT_EQ(r.balance, d.balance);
   EXPECT_EQ(r.time_integration, d.time_integration);
+}
+
+// Every enumeration's name table round-trips, and an unknown name is a ConfigError listing the choices.
+template <class E>
+void expect_names_round_trip() {
+  for (const std::string& name : names_of<E>()) EXPECT_EQ(name_of(parse_name<E>(name, "/x")), name);
+  try {
+    parse_name<E>("no_such_choice", "/x");
+    ADD_FAILURE() << "unknown name accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.path(), "/x");
+    EXPECT_NE(std::string(e.what()).find(names_of<E>().front()), std::string::npos) << e.what();
+  }
+}
+
+TEST(SingleSource, EveryEnumerationHasOneNameTable) {
+  expect_names_round_trip<Status>();
+  expect_names_round_trip<Discretization>();
+  expect_names_round_trip<OperatorStorage>();
+  expect_names_round_trip<ParameterRule>();
+  expect_names_round_trip<WallModel>();
+  expect_names_round_trip<PairViscosityMean>();
+  expect_names_round_trip<SmoothingKernel::Type>();
+  expect_names_round_trip<MesoScheme>();
+  expect_names_round_trip<MesoBalance>();
+  expect_names_round_trip<TimeIntegration>();
+  expect_names_round_trip<WallNodeValue>();
+  expect_names_round_trip<BoundaryOracle>();
+  EXPECT_EQ(row_status(Status::target_time), "ok");
+  EXPECT_EQ(row_status(Status::no_convergence), "no_convergence");
 }
 
 TEST(SingleSource, AKernelEtaThatDiffersFromTheScenesIsRejectedAtItsPath) {

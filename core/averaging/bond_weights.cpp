@@ -1,4 +1,4 @@
-#include "strategies/quadrature/bond_weights.hpp"
+#include "core/averaging/bond_weights.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,46 @@
+// The reduced model's solver section: schema and reader (declared in meso_solver.hpp).
+#include "core/reduced/meso_solver.hpp"
+
+namespace closurelab {
+
+ParamSchema meso_solver_schema() {
+  const MesoSolverOptions d;  // the defaults
+  ParamSchema schema{
+      number_param("kappa", d.kappa, "time-step coefficient of (5.21)-(5.22)", 0.0, 1.0, true),
+      number_param("spacing_over_eta", d.spacing_over_eta, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0),
+      string_param("scheme", name_of(d.scheme), "paper: (5.11)-(5.14); staggered: conservative flux form",
+                   names_of<MesoScheme>()),
+      bool_param("wall_constraint_forces", d.wall_constraint_forces,
+                 "add the averaged constraint forces holding the wall particles (DESIGN.md par. 6)"),
+      string_param("wall_node_value", name_of(d.wall_node_value),
+                   "reported v at the wall-surface nodes: imposed (5.6) zero, or reconstructed (the average of the "
+                   "closure's reconstruction there; an output only)",
+                   names_of<WallNodeValue>()),
+      string_param("balance", name_of(d.balance),
+                   "right-hand side: stress_divergence (the paper: finite difference of the quadrature's T_int) or "
+                   "force_density (exact divergence of (2.13): the averaged pair forces on the fluid particles, "
+                   "wall constraint forces included; the quadrature is then unused)",
+                   names_of<MesoBalance>()),
+      string_param("time_integration", name_of(d.time_integration),
+                   "explicit (forward Euler, the paper) or backward_euler (implicit; needs a closure with fixed "
+                   "parameters, whose rate is affine in v)",
+                   names_of<TimeIntegration>())};
+  for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
+  return schema;
+}
+
+MesoSolverOptions meso_options_from(const json& s) {
+  MesoSolverOptions o;
+  o.kappa = s.at("kappa").get<double>();
+  o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
+  o.scheme = parse_name<MesoScheme>(s.at("scheme").get<std::string>(), "/solver/scheme");
+  o.wall_constraint_forces = s.at("wall_constraint_forces").get<bool>();
+  o.wall_node_value = parse_name<WallNodeValue>(s.at("wall_node_value").get<std::string>(), "/solver/wall_node_value");
+  o.balance = parse_name<MesoBalance>(s.at("balance").get<std::string>(), "/solver/balance");
+  o.time_integration =
+      parse_name<TimeIntegration>(s.at("time_integration").get<std::string>(), "/solver/time_integration");
+  read_time_loop(s, o);
+  return o;
+}
+
+}  // namespace closurelab

@@ -39,6 +39,7 @@ struct SphRunResult {
   std::int64_t pair_evaluations = 0, list_rebuilds = 0;
   std::string message;  // why, when status is no_convergence or numerical_issue
   json to_json() const;
+  static SphRunResult from_json(const json& j);  // the inverse of to_json (a stored run's record)
 };
 
 SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& particles, const SphRunOptions& options);

@@ -50,8 +50,11 @@ TEST(ReferenceStoreCli, ASecondSpecReusesTheStoredRunAndADamagedEntryIsRecompute
   EXPECT_NE(list.out.find("total 1 entries, "), std::string::npos) << list.out;
 
   const fs::path payload = store / id / "particles.h5part";
-  if (run_shell(work, "python3 -c 'import h5py'").code == 0) {  // opens in h5py as it is
-    const CliOutcome py = run_shell(work, "python3 -c \"import h5py; f = h5py.File('" + payload.string() +
+  std::string python;  // one with h5py: python3 on the PATH, else Debian's own
+  for (const char* py : {"python3", "/usr/bin/python3"})
+    if (python.empty() && run_shell(work, std::string(py) + " -c 'import h5py'").code == 0) python = py;
+  if (!python.empty()) {  // opens in h5py as it is
+    const CliOutcome py = run_shell(work, python + " -c \"import h5py; f = h5py.File('" + payload.string() +
                                               "', 'r'); s = f['Step#0']; print(len(s['x']), sorted(s.keys()), "
                                               "float(s.attrs['TimeValue']))\"");
     ASSERT_EQ(py.code, 0) << py.err;

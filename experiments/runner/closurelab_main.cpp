@@ -8,6 +8,7 @@
 #include "experiments/runner/closurelab_main.hpp"
 
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -160,7 +161,12 @@ int run_command(int argc, char** argv, const Registry& registry) {
   opt.spec_file = spec_file;
   configure_reference_store(store_dir, opt.force);
   const json spec = read_json_file(spec_file);
-  return run_experiment(spec, registry, opt);
+  const int code = run_experiment(spec, registry, opt);
+  std::error_code ec;
+  if (std::filesystem::is_directory(store_dir, ec))
+    std::cerr << "reference store " << store_dir << ": " << reference_store().list().size() << " entries, "
+              << reference_store().total_bytes() << " bytes\n";
+  return code;
 }
 
 int store_command(int argc, char** argv) {

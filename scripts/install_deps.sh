@@ -2,7 +2,8 @@
 # Installs the Debian packages closurelab needs (only those missing). Works as root or with sudo.
 set -euo pipefail
 packages=(cmake g++ make git libeigen3-dev libgsl-dev nlohmann-json3-dev libsuitesparse-dev libgtest-dev
-          libbenchmark-dev libomp-dev python3)
+          libbenchmark-dev libomp-dev libhdf5-dev python3 python3-h5py)
+# python3-h5py: the tests check that the reference store's H5Part files open in h5py, and read one it wrote.
 # The figures of scripts/reproduce.sh also need python3-matplotlib: `scripts/install_deps.sh --figures`.
 [ "${1:-}" = "--figures" ] && packages+=(python3-matplotlib)
 missing=()

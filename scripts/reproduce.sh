@@ -43,7 +43,7 @@ if [ "$mode" = quick ]; then
   tables=()
   for spec in experiments/quick/*.json; do
     name=$(basename "$spec" .json)
-    run "$spec" "$out/$name"
+    run "$spec" "$out/$name" --store "$out/store"   # a fresh reference store: no stored direct run reused
     tables+=("$out/$name/$name.json")
     "${SUMMARIZE[@]}" --view front "$out/$name/$name.json" "$out/$name"
     "${SUMMARIZE[@]}" --view profiles "$out/$name/$name.json" "$out/$name"

@@ -18,7 +18,7 @@ cmake --build "$tmp/build" -j "$(nproc)"
 ctest --test-dir "$tmp/build" --output-on-failure
 "$tmp/build/test_richardson_conformance"
 OMP_NUM_THREADS=1 "$tmp/build/custom_closurelab" run examples/custom_deconvolver/kolmogorov_richardson.json \
-  --out "$tmp/out"
+  --out "$tmp/out" --store "$tmp/store"
 python3 - "$tmp/out/kolmogorov_richardson.json" <<'PY'
 import json, sys
 rows = json.load(open(sys.argv[1]))["rows"]

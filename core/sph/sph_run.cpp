@@ -18,6 +18,23 @@ json SphRunResult::to_json() const {
   return j;
 }
 
+SphRunResult SphRunResult::from_json(const json& j) {
+  SphRunResult r;
+  r.status = parse_name<Status>(j.at("status").get<std::string>(), "/status");
+  r.steps = j.at("steps").get<std::int64_t>();
+  r.time = j.at("time").get<double>();
+  r.dt = j.at("dt").get<double>();
+  r.wall_seconds = j.at("wall_seconds").get<double>();
+  r.last_relative_change = j.at("last_relative_change").get<double>();
+  r.moving_particles = j.at("moving_particles").get<std::int64_t>();
+  r.active_particles = j.at("active_particles").get<std::int64_t>();
+  r.total_particles = j.at("total_particles").get<std::int64_t>();
+  r.pair_evaluations = j.at("pair_evaluations").get<std::int64_t>();
+  r.list_rebuilds = j.at("list_rebuilds").get<std::int64_t>();
+  r.message = j.value("message", "");
+  return r;
+}
+
 SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRunOptions& opt) {
   SphEngine engine(scene, ps);
   engine.compute_accelerations();

@@ -31,6 +31,7 @@ struct SphRunResult : TimeLoopResult {
   std::int64_t moving_particles = 0, active_particles = 0, total_particles = 0;
   std::int64_t pair_evaluations = 0, list_rebuilds = 0;
   json to_json() const;
+  static SphRunResult from_json(const json& j);  // the inverse of to_json (a stored run's record)
 };
 
 SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& particles, const SphRunOptions& options);

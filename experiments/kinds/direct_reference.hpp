@@ -1,10 +1,16 @@
 #pragma once
 // The direct SPH reference of a scene: run to steady state (the paper's criterion applied to the averaged
-// velocity on a column mesh) or to a target time; shared by the validation and reduced-model experiments.
+// velocity on a column mesh) or to a target time; shared by the validation and reduced-model experiments
+// through the persistent reference store (experiments/kinds/reference_store.hpp).
+#include <functional>
+#include <string>
+#include <vector>
+
 #include "core/averaging/averaging_kernel.hpp"
 #include "core/base/mesh.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_run.hpp"
+#include "experiments/kinds/reference_store.hpp"
 
 namespace closurelab {
 
@@ -13,7 +19,26 @@ struct DirectReference {
   SphRunResult run;
 };
 
+// One direct run, computed here and now.
 DirectReference run_direct_reference(const Scene& scene, const AveragingKernel& kernel, SphRunOptions options,
                                      const TensorMesh2D& observe_mesh);
+
+// What determines a direct reference: the resolved scene, kernel and SPH solver sections of a cell, the row
+// spacing of the column mesh whose averaged velocity decides steady state, and the snapshot times.
+struct ReferenceRequest {
+  json scene, kernel, solver;
+  double observe_spacing = 0.0;  // absolute (model length)
+  std::vector<double> snapshot_times;
+};
+
+// The store key of a request: the sections, the spacing, the times and the engine version
+// (core/sph/engine_version.hpp); the solver's progress interval, which changes no result, is left out.
+json reference_key(const ReferenceRequest& request);
+
+// The reference from the process-wide store (reference_store()), computed and stored when absent. The run's
+// record gains "reference_store": {entry, reused, computed_by}.
+StoredReference stored_direct_reference(const ReferenceRequest& request, const Scene& scene,
+                                        const AveragingKernel& kernel,
+                                        const std::function<void(const std::string&)>& progress);
 
 }  // namespace closurelab

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <optional>
 #include <tuple>
 
@@ -50,23 +49,12 @@ ParamSchema transient_schema() {
                       "channel width, or L_y without walls); the steady state is always reported as well")};
 }
 
-// Direct SPH references (the final particle state and any snapshots) are shared by the cells of one process that use the same
-// scene, kernel and reference solver; each cell averages them at its own coarse nodes.
-struct CachedReference {
-  ParticleSystem particles;
-  json run;
-  std::vector<std::pair<double, ParticleSystem>> snapshots;
-};
-std::mutex cache_mutex;
-
 struct DirectProfiles {
   Eigen::VectorXd averaged;  // at the coarse nodes
   json run;
   std::vector<Eigen::VectorXd> snapshots;
   Eigen::VectorXd row_y, row_velocity;
 };
-std::map<std::string, CachedReference> cache;
-
 class ReducedModel : public ExperimentKind {
  public:
   std::string name() const override { return "reduced_model"; }
@@ -273,34 +261,16 @@ class ReducedModel : public ExperimentKind {
   static DirectProfiles direct_reference(const json& cfg, const Scene& scene,
                                                            const AveragingKernel& kernel, const Eigen::VectorXd& nodes,
                                                            const ProgressFn& progress) {
-    const std::string key = cfg.at("scene").dump() + cfg.at("kernel").dump() + cfg.at("reference").dump() +
-                            cfg.at("transient").dump();
-    CachedReference c;
-    bool reused = false;
-    {
-      std::lock_guard<std::mutex> lock(cache_mutex);
-      auto it = cache.find(key);
-      if (it != cache.end()) c = it->second, reused = true;
-    }
-    if (!reused) {
-      SphRunOptions opt = sph_run_options_from(cfg.at("reference").at("solver"));
-      opt.progress = progress;
-      opt.snapshot_times = snapshot_times(cfg, scene);
-      opt.on_snapshot = [&c](double t, const ParticleSystem& p) { c.snapshots.emplace_back(t, p); };
-      const double spacing = cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene.eta;
-      DirectReference d = run_direct_reference(scene, kernel, opt, column_mesh(scene.box, spacing));
-      c.particles = std::move(d.particles);
-      c.run = d.run.to_json();
-      std::lock_guard<std::mutex> lock(cache_mutex);
-      cache[key] = c;
-    } else {
-      c.run["reused_from_an_earlier_cell"] = true;
-    }
+    const double spacing = cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene.eta;
+    const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("reference").at("solver"),
+                                   column_mesh(scene.box, spacing).y.spacing, snapshot_times(cfg, scene)};
+    const StoredReference c = stored_direct_reference(request, scene, kernel, progress);
     UniformMesh1D axis{nodes[0], nodes.size() > 1 ? nodes[1] - nodes[0] : 1.0, static_cast<int>(nodes.size()),
                        !scene.has_walls, scene.has_walls ? 0.0 : scene.box.ly};
     const TensorMesh2D mesh{UniformMesh1D{0.0, scene.box.lx, 1, true, scene.box.lx}, axis};
     std::vector<Eigen::VectorXd> snapshots;
-    for (const auto& [t, p] : c.snapshots) snapshots.push_back(average_particles(p, scene.box, kernel, mesh, AveragingRequest{}).vx);
+    for (const auto& snap : c.snapshots)
+      snapshots.push_back(average_particles(snap.particles, scene.box, kernel, mesh, AveragingRequest{}).vx);
     std::map<long, std::pair<double, int>> rows;  // lattice row → (Σ v_x, count) over the fluid particles
     for (std::size_t a = 0; a < c.particles.size(); ++a) {
       if (c.particles.fixed[a]) continue;

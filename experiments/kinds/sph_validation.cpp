@@ -146,16 +146,15 @@ class SphValidation : public ExperimentKind {
     using clock = std::chrono::steady_clock;
     const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
     const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
-    SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
-    opt.progress = progress;
     const TensorMesh2D mesh =
         column_mesh(scene->box, cfg.at("averaging").at("mesh_spacing_over_eta").get<double>() * scene->eta);
-    DirectReference direct = run_direct_reference(*scene, *kernel, opt, mesh);
+    const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("solver"), mesh.y.spacing, {}};
+    const StoredReference direct = stored_direct_reference(request, *scene, *kernel, progress);
     const ParticleSystem& ps = direct.particles;
-    const SphRunResult& sph = direct.run;
+    const SphRunResult sph = SphRunResult::from_json(direct.run);
     json row;
     row["status"] = row_status(sph.status);
-    row["direct_sph"] = sph.to_json();
+    row["direct_sph"] = direct.run;
     if (!sph.message.empty()) row["message"] = sph.message;
     row["scene_derived"] = {{"dx", scene->dx},           {"eta", scene->eta},
                             {"l1", scene->wall_lo},      {"l2", scene->wall_hi},

@@ -2,11 +2,13 @@
 // with its own registration hook (experiments/runner/closurelab_main.hpp); the stock `closurelab` calls it
 // with none (main.cpp).
 //   closurelab list [family]
-//   closurelab run SPEC.json [--out DIR] [--jobs N] [--force]
+//   closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR]
+//   closurelab store [--store DIR]
 //   closurelab deconvolve --matrix A.mtx --rhs b.mtx [...]
 #include "experiments/runner/closurelab_main.hpp"
 
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -15,6 +17,7 @@
 #include "core/base/registry.hpp"
 #include "experiments/runner/deconvolve_command.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
+#include "experiments/kinds/reference_store.hpp"
 #include "experiments/runner/runner.hpp"
 
 namespace closurelab {
@@ -27,21 +30,29 @@ void usage(std::ostream& os) {
   os << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n"
      << "usage:\n"
      << "  closurelab list [FAMILY]                        families: " << families << "\n"
-     << "  closurelab run SPEC.json [--out DIR] [--jobs N] [--force]\n"
+     << "  closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR]\n"
+     << "  closurelab store [--store DIR]                  the reference store's entries and size\n"
      << "  closurelab deconvolve --matrix A.mtx --rhs b.mtx [--x-true x.mtx] --method NAME [--param k=v ...]\n"
      << "                        [--noise-level d] [--out x.mtx]\n"
      << "  closurelab COMMAND --help                       the usage of one command\n";
 }
 
 const char* const run_usage =
-    "usage: closurelab run SPEC.json [--out DIR] [--jobs N] [--force]\n"
+    "usage: closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR]\n"
     "  Expands the experiment matrix of SPEC.json, validates every cell before running any, runs them and writes\n"
     "  DIR/cells/<id>.json per cell and the table DIR/<name>.json. A finished cell is not run again.\n"
     "  --out DIR   output folder (default: results); locked while the run writes\n"
     "  --jobs N    cells run at once (default 1); the OpenMP threads are shared among them\n"
-    "  --force     recompute finished cells\n"
+    "  --force     recompute finished cells, and each direct SPH reference they use (once per run)\n"
+    "  --store DIR the reference store: direct SPH runs kept across cells, specs and runs (default\n"
+    "              $CLOSURELAB_STORE, else ~/.cache/closurelab/store); `closurelab store` lists it\n"
     "  --help      this text\n"
     "  Exit codes: 0 all cells ran, 1 a cell failed or a write failed, 2 bad input or the folder is in use.\n";
+
+const char* const store_usage =
+    "usage: closurelab store [--store DIR]\n"
+    "  Lists the entries of the reference store (id, size, date, scene and what ended the run) and its total\n"
+    "  size. DIR defaults to $CLOSURELAB_STORE, else ~/.cache/closurelab/store. Remove the folder to empty it.\n";
 
 const char* const list_usage =
     "usage: closurelab list [FAMILY]\n"
@@ -113,7 +124,7 @@ int run_command(int argc, char** argv, const Registry& registry) {
     return 0;
   }
   RunOptions opt;
-  std::string spec_file;
+  std::string spec_file, store_dir = default_reference_store_dir();
   for (int i = 0; i < argc; ++i) opt.command_line.append(i ? " " : "").append(argv[i]);
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
@@ -135,8 +146,11 @@ int run_command(int argc, char** argv, const Registry& registry) {
       if (opt.jobs < 1 || used != v.size()) throw ConfigError("", "--jobs needs a positive integer, got '" + v + "'");
     } else if (a == "--force") {
       opt.force = true;
+    } else if (a == "--store") {
+      store_dir = need("a folder");
+      if (store_dir.empty()) throw ConfigError("", "--store needs a folder name, got ''");
     } else if (!a.empty() && a[0] == '-') {
-      throw ConfigError("", "unknown option '" + a + "'; valid: --out, --jobs, --force, --help");
+      throw ConfigError("", "unknown option '" + a + "'; valid: --out, --jobs, --force, --store, --help");
     } else if (spec_file.empty()) {
       spec_file = a;
     } else {
@@ -145,8 +159,50 @@ int run_command(int argc, char** argv, const Registry& registry) {
   }
   if (spec_file.empty()) throw ConfigError("", "run needs a SPEC.json");
   opt.spec_file = spec_file;
+  configure_reference_store(store_dir, opt.force);
   const json spec = read_json_file(spec_file);
-  return run_experiment(spec, registry, opt);
+  const int code = run_experiment(spec, registry, opt);
+  std::error_code ec;
+  if (std::filesystem::is_directory(store_dir, ec))
+    std::cerr << "reference store " << store_dir << ": " << reference_store().list().size() << " entries, "
+              << reference_store().total_bytes() << " bytes\n";
+  return code;
+}
+
+int store_command(int argc, char** argv) {
+  if (wants_help(argc, argv)) {
+    std::cout << store_usage;
+    return 0;
+  }
+  std::string dir = default_reference_store_dir();
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--store") {
+      if (i + 1 >= argc || argv[i + 1][0] == '\0') {
+        std::cerr << "error: --store needs a folder name\n" << store_usage;
+        return 2;
+      }
+      dir = argv[++i];
+    } else {
+      std::cerr << "error: unknown argument '" << a << "'; valid: --store DIR, --help\n" << store_usage;
+      return 2;
+    }
+  }
+  const ReferenceStore store(dir);
+  std::cout << "reference store " << dir << "\n";
+  const std::vector<StoreEntryInfo> entries = store.list();
+  for (const StoreEntryInfo& e : entries) {
+    std::cout << "  " << e.id << "  " << e.bytes << " bytes  ";
+    if (!e.problem.empty()) {
+      std::cout << "unreadable (" << e.problem << ")\n";
+      continue;
+    }
+    std::cout << e.computed << "  " << e.key.value("kind", "?");
+    if (e.key.contains("scene")) std::cout << " " << e.key["scene"].value("name", "?");
+    std::cout << " (" << e.status << ")\n";
+  }
+  std::cout << "total " << entries.size() << " entries, " << store.total_bytes() << " bytes\n";
+  return 0;
 }
 
 }  // namespace
@@ -166,6 +222,7 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
     if (cmd == "list") return list_command(argc, argv, registry);
     if (cmd == "run") return run_command(argc, argv, registry);
     if (cmd == "deconvolve") return run_deconvolve_command(argc, argv, registry);
+    if (cmd == "store") return store_command(argc, argv);
     if (cmd == "--help" || cmd == "-h" || cmd == "help") {
       usage(std::cout);
       return 0;
@@ -174,7 +231,7 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
       std::cout << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n";
       return 0;
     }
-    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, deconvolve, --help, --version\n";
+    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, deconvolve, store, --help, --version\n";
     usage(std::cerr);
     return 2;
   } catch (const ConfigError& e) {

@@ -16,8 +16,8 @@ using namespace closurelab;
 
 namespace {
 
-// One reduced_model cell on poiseuille-uniform at n_y = 48 (the direct reference is shared by the cells of
-// this process, so it runs once per η').
+// One reduced_model cell on poiseuille-uniform at n_y = 48 (the direct reference comes from the reference
+// store, the tests' own, so it runs once per η' in a ctest run).
 json run_cell(const json& changes, double eta = 1.0 / 16) {
   const Registry& reg = builtin_registry();
   json cell = {{"scene", {{"name", "poiseuille-uniform"}, {"n_y", 48}, {"n_x", 12}, {"eta_over_ly", eta}}},

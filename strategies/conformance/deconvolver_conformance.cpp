@@ -16,36 +16,7 @@
 namespace closurelab {
 namespace {
 
-// Records the failed expectations of one check (a GoogleTest-free EXPECT).
-class Expect {
- public:
-  Expect(std::string check, std::vector<ConformanceFailure>& out) : check_(std::move(check)), out_(out) {}
-  bool that(bool condition, const std::string& what) {
-    if (!condition) out_.push_back({check_, what});
-    return condition;
-  }
-  bool near(double a, double b, double tolerance, const std::string& what) {
-    std::ostringstream s;
-    s.precision(17);
-    s << what << ": " << a << " vs " << b << " (tolerance " << tolerance << ")";
-    return that(std::abs(a - b) <= tolerance, s.str());
-  }
-  template <class F>
-  bool throws_config_error(F&& f, const std::string& what) {
-    try {
-      f();
-    } catch (const ConfigError&) {
-      return true;
-    } catch (const std::exception& e) {
-      return that(false, what + ": threw " + e.what() + " instead of a ConfigError");
-    }
-    return that(false, what + ": no ConfigError thrown");
-  }
-
- private:
-  std::string check_;
-  std::vector<ConformanceFailure>& out_;
-};
+using conformance::Expect;
 
 struct Problem {
   ForwardOperator a;
@@ -275,39 +246,9 @@ const std::vector<std::string>& deconvolver_conformance_checks() {
   return names;
 }
 
-std::string ConformanceReport::to_string() const {
-  std::string s;
-  for (const auto& c : checks) {
-    std::string lines;
-    for (const auto& f : failures)
-      if (f.check == c) lines += "    " + f.message + "\n";
-    s += name + " " + c + ": " + (lines.empty() ? "ok\n" : "FAILED\n" + lines);
-  }
-  return s;
-}
-
 ConformanceReport run_deconvolver_conformance(const Registry& registry, const std::string& name, const std::string& check) {
   registry.deconvolvers.info(name, "/deconvolver/name");  // ConfigError listing the known names
-  const auto& names = deconvolver_conformance_checks();
-  if (!check.empty() && std::find(names.begin(), names.end(), check) == names.end()) {
-    std::string known;
-    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
-    throw ConfigError("", "unknown conformance check '" + check + "'; known: " + known);
-  }
-  ConformanceReport report;
-  report.name = name;
-  const Subject subject{registry.deconvolvers, name};
-  for (const auto& [check_name, f] : all_checks()) {
-    if (!check.empty() && check_name != check) continue;
-    report.checks.push_back(check_name);
-    Expect e(check_name, report.failures);
-    try {
-      f(subject, e);
-    } catch (const std::exception& err) {
-      e.that(false, std::string("unexpected exception: ") + err.what());
-    }
-  }
-  return report;
+  return conformance::run_checks(name, Subject{registry.deconvolvers, name}, all_checks(), check);
 }
 
 }  // namespace closurelab

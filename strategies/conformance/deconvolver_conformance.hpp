@@ -17,21 +17,9 @@
 #include <vector>
 
 #include "core/base/registry.hpp"
+#include "strategies/conformance/conformance_report.hpp"
 
 namespace closurelab {
-
-struct ConformanceFailure {
-  std::string check;
-  std::string message;
-};
-
-struct ConformanceReport {
-  std::string name;                         // the deconvolver checked
-  std::vector<std::string> checks;          // the checks run
-  std::vector<ConformanceFailure> failures; // empty: it conforms
-  bool ok() const { return failures.empty(); }
-  std::string to_string() const;            // one line per check ("ok" or its failures), newline-terminated
-};
 
 // The names of every check, in the order they run.
 const std::vector<std::string>& deconvolver_conformance_checks();

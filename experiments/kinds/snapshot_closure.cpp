@@ -4,7 +4,7 @@
 //   b = v̄_x at the coarse data nodes (2.9) → x = deconvolution of b (§4) → the reconstruction at the fluid
 //   particles (walls keep their velocities) → T_int,xy (2.13) of the pair forces (5.1) under the
 //   reconstruction, against T_int,xy under the snapshot's own velocities, at the coarse nodes.
-// The coarse meshes are the reduced model's (core/reduced/meso_solver.cpp): nodes on both walls and the
+// The coarse meshes are the reduced model's (core/reduced/reduced_grid.hpp): nodes on both walls and the
 // interior nodes as deconvolution data (a walled scene), or cell-centred nodes (periodic).
 #include "experiments/kinds/snapshot_closure.hpp"
 
@@ -18,6 +18,7 @@
 #include "core/closure/forward_operator.hpp"
 #include "core/closure/reconstruction.hpp"
 #include "core/io/particle_snapshot.hpp"
+#include "core/reduced/reduced_grid.hpp"
 #include "core/sph/sph_engine.hpp"
 #include "experiments/runner/cell_config.hpp"
 #include "experiments/runner/provenance.hpp"
@@ -40,34 +41,16 @@ ParamSchema closure_schema() {
           number_param("noise_level", 0.0, "delta handed to the deconvolver's parameter rule", 0.0, {})};
 }
 
-TensorMesh2D column(const Scene& s, const UniformMesh1D& y) {
-  return TensorMesh2D{UniformMesh1D{0.0, s.box.lx, 1, true, s.box.lx}, y};
-}
 TensorMesh2D as_line(const UniformMesh1D& axis) { return TensorMesh2D{axis, UniformMesh1D{0.0, 1.0, 1, false, 0.0}}; }
 
-struct Meshes {
-  UniformMesh1D coarse, data, fine;  // nodes of the stress; deconvolution data; the lattice rows
-};
-
-Meshes meshes(const Scene& scene, double spacing, const std::string& path) {
-  Meshes m;
-  if (!scene.has_walls) {
-    const int k = static_cast<int>(std::lround(scene.box.ly / spacing));
-    if (k < 4) throw ConfigError(path, "fewer than 4 coarse nodes across the domain");
-    m.coarse = m.data = UniformMesh1D::cell_centred(0.0, scene.box.ly, k, true);
-    m.fine = UniformMesh1D::cell_centred(0.0, scene.box.ly, scene.ny, true);
-    return m;
+// The reduced model's meshes (core/reduced/reduced_grid.hpp): stress at the coarse nodes, the interior nodes as
+// deconvolution data, the lattice rows as the fine mesh; errors at path.
+ReducedGrid meshes(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta, const std::string& path) {
+  try {
+    return make_reduced_grid(scene, kernel, spacing_over_eta, false, false);
+  } catch (const ConfigError& e) {
+    throw ConfigError(path, e.message());
   }
-  const double w = scene.wall_hi - scene.wall_lo;
-  const int k = static_cast<int>(std::lround(w / spacing));
-  if (k < 4) throw ConfigError(path, "fewer than 4 coarse intervals across the channel");
-  m.coarse = UniformMesh1D{scene.wall_lo, w / k, k + 1, false, 0.0};
-  m.data = UniformMesh1D{scene.wall_lo + w / k, w / k, k - 1, false, 0.0};
-  const int j_lo = static_cast<int>(std::floor(scene.wall_lo / scene.dx - 0.5)) + 1;
-  int count = 0;
-  while ((j_lo + count + 0.5) * scene.dx < scene.wall_hi) ++count;
-  m.fine = UniformMesh1D{(j_lo + 0.5) * scene.dx, scene.dx, count, false, 0.0};
-  return m;
 }
 
 // The snapshot's particles checked against the scene: inside the box, known phases; held-fixed flags from
@@ -142,7 +125,7 @@ class SnapshotClosure : public ExperimentKind {
       throw ConfigError(path + "/snapshot/file", "'" + file + "' is not a readable file");
     out["closure"] = resolve_section(cell, "closure", closure_schema(), path);
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
-    meshes(*scene, out["closure"]["spacing_over_eta"].get<double>() * scene->eta, path + "/closure/spacing_over_eta");
+    meshes(*scene, *kernel, out["closure"]["spacing_over_eta"].get<double>(), path + "/closure/spacing_over_eta");
     return out;
   }
 
@@ -166,8 +149,8 @@ class SnapshotClosure : public ExperimentKind {
     const double read_seconds = std::chrono::duration<double>(clock::now() - t0).count();
 
     // Average, deconvolve, reconstruct.
-    const Meshes m = meshes(*scene, c.at("spacing_over_eta").get<double>() * scene->eta, "/closure/spacing_over_eta");
-    const Eigen::VectorXd b = average_particles(ps, scene->box, *kernel, column(*scene, m.data), AveragingRequest{}).vx;
+    const ReducedGrid m = meshes(*scene, *kernel, c.at("spacing_over_eta").get<double>(), "/closure/spacing_over_eta");
+    const Eigen::VectorXd b = average_particles(ps, scene->box, *kernel, column_of(*scene, m.data), AveragingRequest{}).vx;
     const Discretization disc = parse_discretization(c.at("discretization").get<std::string>(), "/closure/discretization");
     const ForwardOperator a = make_averaging_operator_1d(*kernel, m.data, m.fine, disc);
     deconv->setup(a);
@@ -194,18 +177,18 @@ class SnapshotClosure : public ExperimentKind {
     progress("pair forces and interaction stress of " + std::to_string(ps.size()) + " particles");
     const auto t_stress = clock::now();
     long pairs = 0;
-    const Eigen::VectorXd t_exact = interaction_xy(*scene, ps, *kernel, column(*scene, m.coarse), pairs);
-    const Eigen::VectorXd t_closure = interaction_xy(*scene, closed, *kernel, column(*scene, m.coarse), pairs);
+    const Eigen::VectorXd t_exact = interaction_xy(*scene, ps, *kernel, column_of(*scene, m.coarse), pairs);
+    const Eigen::VectorXd t_closure = interaction_xy(*scene, closed, *kernel, column_of(*scene, m.coarse), pairs);
     const double stress_seconds = std::chrono::duration<double>(clock::now() - t_stress).count();
 
     const int nn = m.coarse.count;
-    const double l1 = scene->wall_lo, l2 = scene->wall_hi, eta = scene->eta;
+    const double l1 = scene->wall_lo, l2 = scene->wall_hi;
     std::vector<bool> channel(nn), interior(nn), band(nn);
     double scale = 0.0;
     for (int n = 0; n < nn; ++n) {
       const double y = m.coarse.node(n);
       channel[n] = !scene->has_walls || (y > l1 - 1e-12 && y < l2 + 1e-12);
-      interior[n] = !scene->has_walls || (y >= l1 + 3 * eta - 1e-12 && y <= l2 - 3 * eta + 1e-12);
+      interior[n] = scene->in_interior(y);
       band[n] = channel[n] && !interior[n];
       if (channel[n]) scale = std::max(scale, std::abs(t_exact[n]));
     }

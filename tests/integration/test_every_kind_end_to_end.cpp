@@ -9,8 +9,11 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
 
 #include "core/base/params.hpp"
+#include "core/base/registry.hpp"
+#include "core/sph/scene.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "tests/support/cli_run.hpp"
 
@@ -53,6 +56,11 @@ const std::map<std::string, TinyCell>& tiny_cells() {
          "/errors/vs_averaged_direct_sph/peak_relative_difference",
          "/transient/0/vs_averaged_direct_sph/all_nodes/max_rel", "/transient/1/vs_averaged_direct_sph/all_nodes/max_rel",
          "/cost/steps", "/cost/speed_up", "/cost/direct_sph_wall_seconds", "/direct_sph/", "/reduced_model/"}}},
+      {"snapshot_closure",  // the file is written by write_inputs() (its path set in the test): the channel's lattice at the analytic flow
+       {R"({"scene": {"name": "poiseuille-uniform", "n_y": 32}, "snapshot": {"file": "snapshot.csv"},
+            "closure": {"deconvolver": {"name": "landweber", "order": 1}}})",
+        {"/errors/stress_xy/channel/max_rel", "/errors/stress_xy/interior/max_rel", "/errors/particle_velocity_max_rel",
+         "/cost/deconvolution_seconds"}}},
   };
   return cells;
 }
@@ -77,6 +85,20 @@ bool all_finite(const json& j, const std::string& path, std::string& where) {
   return true;
 }
 
+// Inputs a kind reads from files, written into the cell's working folder.
+void write_inputs(const std::string& kind, const std::filesystem::path& work) {
+  if (kind != "snapshot_closure") return;
+  const auto scene = builtin_registry().scenes.create(json{{"name", "poiseuille-uniform"}, {"n_y", 32}}, "/scene");
+  const ParticleSystem ps = scene->make_particles();
+  std::ostringstream csv;
+  csv.precision(17);
+  csv << "x,y,vx,vy,mass,phase\n";
+  for (std::size_t a = 0; a < ps.size(); ++a)
+    csv << ps.x[a] << "," << ps.y[a] << "," << (ps.fixed[a] ? 0.0 : scene->analytic_vx(ps.y[a])) << ",0,"
+        << ps.mass[a] << "," << ps.phase[a] << "\n";
+  write_text(work / "snapshot.csv", csv.str());
+}
+
 class EveryKind : public ::testing::TestWithParam<std::string> {};
 
 }  // namespace
@@ -94,8 +116,10 @@ TEST_P(EveryKind, TinyCellRunsEndToEndWithFiniteErrors) {
   ASSERT_NE(it, tiny_cells().end()) << "experiment kind '" << kind
                                     << "' has no tiny cell: add one to tiny_cells() in " << __FILE__;
   const auto work = fresh_work_folder("every_kind_" + kind);
-  const json spec = {{"name", "tiny"}, {"kind", kind}, {"base", json::parse(it->second.base)}};
+  json spec = {{"name", "tiny"}, {"kind", kind}, {"base", json::parse(it->second.base)}};
+  if (kind == "snapshot_closure") spec["base"]["snapshot"]["file"] = (work / "snapshot.csv").string();
   write_text(work / "tiny.json", spec.dump(2));
+  write_inputs(kind, work);
   const CliOutcome o = run_shell(work, "OMP_NUM_THREADS=1 " + std::string(CLOSURELAB_BINARY_DIR) +
                                            "/experiments/closurelab run " + (work / "tiny.json").string() +
                                            " --out " + (work / "out").string());

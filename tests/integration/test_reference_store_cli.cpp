@@ -5,7 +5,7 @@
 
 #include "core/base/params.hpp"
 #include "experiments/kinds/reference_store.hpp"
-#include "tests/integration/cli_run.hpp"
+#include "tests/support/cli_run.hpp"
 
 using namespace closurelab::testing;
 using closurelab::json;

@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "core/base/params.hpp"
-#include "tests/integration/cli_run.hpp"
+#include "tests/support/cli_run.hpp"
 
 using namespace closurelab::testing;
 using closurelab::json;

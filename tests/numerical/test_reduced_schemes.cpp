@@ -97,7 +97,7 @@ std::pair<double, double> channel_odd_even(MesoScheme scheme, Eigen::VectorXd& l
   opt.on_snapshot = [&](double, const Eigen::VectorXd& v) { at_one = v; };
   MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
   const MesoResult r = solver.run();
-  EXPECT_EQ(r.status, "target_time") << r.message;
+  EXPECT_EQ(r.status, Status::target_time) << r.message;
   last = r.v;
   const auto projection = [](const Eigen::VectorXd& v) {
     double s = 0.0;

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian packages closurelab needs (only those missing). Works as root or with sudo.
+# Open MPI (libopenmpi-dev openmpi-bin) is optional for the build (CLOSURELAB_WITH_MPI) and installed for the
+# mpirun test of the runner.
 set -euo pipefail
 packages=(cmake g++ make git libeigen3-dev libgsl-dev nlohmann-json3-dev libsuitesparse-dev libgtest-dev
-          libbenchmark-dev libomp-dev python3)
+          libbenchmark-dev libomp-dev python3 libopenmpi-dev openmpi-bin)
 # The figures of scripts/reproduce.sh also need python3-matplotlib: `scripts/install_deps.sh --figures`.
 [ "${1:-}" = "--figures" ] && packages+=(python3-matplotlib)
 missing=()

@@ -2,7 +2,8 @@
 // with its own registration hook (experiments/runner/closurelab_main.hpp); the stock `closurelab` calls it
 // with none (main.cpp).
 //   closurelab list [family]
-//   closurelab run SPEC.json [--out DIR] [--jobs N] [--force]
+//   closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--shard i/N]   (also under mpirun -n K)
+//   closurelab merge DIR
 //   closurelab deconvolve --matrix A.mtx --rhs b.mtx [...]
 #include "experiments/runner/closurelab_main.hpp"
 
@@ -16,6 +17,7 @@
 #include "experiments/runner/deconvolve_command.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/runner/runner.hpp"
+#include "experiments/runner/shards.hpp"
 
 namespace closurelab {
 
@@ -27,21 +29,34 @@ void usage(std::ostream& os) {
   os << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n"
      << "usage:\n"
      << "  closurelab list [FAMILY]                        families: " << families << "\n"
-     << "  closurelab run SPEC.json [--out DIR] [--jobs N] [--force]\n"
+     << "  closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--shard i/N]\n"
+     << "  mpirun -n K closurelab run SPEC.json [--out DIR] [--force]\n"
+     << "  closurelab merge DIR                            the table of a run made in shards\n"
      << "  closurelab deconvolve --matrix A.mtx --rhs b.mtx [--x-true x.mtx] --method NAME [--param k=v ...]\n"
      << "                        [--noise-level d] [--out x.mtx]\n"
      << "  closurelab COMMAND --help                       the usage of one command\n";
 }
 
 const char* const run_usage =
-    "usage: closurelab run SPEC.json [--out DIR] [--jobs N] [--force]\n"
+    "usage: closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--shard i/N]\n"
+    "       mpirun -n K closurelab run SPEC.json [--out DIR] [--force] [--shard i/N]\n"
     "  Expands the experiment matrix of SPEC.json, validates every cell before running any, runs them and writes\n"
     "  DIR/cells/<id>.json per cell and the table DIR/<name>.json. A finished cell is not run again.\n"
-    "  --out DIR   output folder (default: results); locked while the run writes\n"
-    "  --jobs N    cells run at once (default 1); the OpenMP threads are shared among them\n"
-    "  --force     recompute finished cells\n"
-    "  --help      this text\n"
+    "  --out DIR      output folder (default: results); locked while the run writes\n"
+    "  --jobs N       cells run at once (default 1); the OpenMP threads are shared among them\n"
+    "  --force        recompute finished cells\n"
+    "  --shard i/N    compute only the i-th of N cost-balanced shares (0 <= i < N) into DIR/cells and write no\n"
+    "                 table; the N shards may run at once on one DIR; then `closurelab merge DIR`\n"
+    "  --help         this text\n"
+    "  Under mpirun (built with MPI) the K ranks share the cells, one at a time each, costliest first; rank 0\n"
+    "  validates, hands out and writes.\n"
     "  Exit codes: 0 all cells ran, 1 a cell failed or a write failed, 2 bad input or the folder is in use.\n";
+
+const char* const merge_usage =
+    "usage: closurelab merge DIR\n"
+    "  Writes the table DIR/<name>.json of a run made with --out DIR --shard i/N (every i), as a single run would\n"
+    "  have written it. Every cell must be in DIR/cells; the missing ones are listed with the shards to run.\n"
+    "  Exit codes: 0 written, 1 a cell had failed or a write failed, 2 missing cells, bad input or the folder in use.\n";
 
 const char* const list_usage =
     "usage: closurelab list [FAMILY]\n"
@@ -135,8 +150,10 @@ int run_command(int argc, char** argv, const Registry& registry) {
       if (opt.jobs < 1 || used != v.size()) throw ConfigError("", "--jobs needs a positive integer, got '" + v + "'");
     } else if (a == "--force") {
       opt.force = true;
+    } else if (a == "--shard") {
+      opt.shard = parse_shard(need("i/N"));
     } else if (!a.empty() && a[0] == '-') {
-      throw ConfigError("", "unknown option '" + a + "'; valid: --out, --jobs, --force, --help");
+      throw ConfigError("", "unknown option '" + a + "'; valid: --out, --jobs, --force, --shard, --help");
     } else if (spec_file.empty()) {
       spec_file = a;
     } else {
@@ -147,6 +164,20 @@ int run_command(int argc, char** argv, const Registry& registry) {
   opt.spec_file = spec_file;
   const json spec = read_json_file(spec_file);
   return run_experiment(spec, registry, opt);
+}
+
+int merge_command(int argc, char** argv, const Registry& registry) {
+  if (wants_help(argc, argv)) {
+    std::cout << merge_usage;
+    return 0;
+  }
+  if (argc != 3 || argv[2][0] == '-') {
+    std::cerr << "error: merge takes one folder DIR\n" << merge_usage;
+    return 2;
+  }
+  std::string command_line;
+  for (int i = 0; i < argc; ++i) command_line.append(i ? " " : "").append(argv[i]);
+  return merge_shards(argv[2], registry, command_line);
 }
 
 }  // namespace
@@ -165,6 +196,7 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
     if (register_user) register_user(registry);
     if (cmd == "list") return list_command(argc, argv, registry);
     if (cmd == "run") return run_command(argc, argv, registry);
+    if (cmd == "merge") return merge_command(argc, argv, registry);
     if (cmd == "deconvolve") return run_deconvolve_command(argc, argv, registry);
     if (cmd == "--help" || cmd == "-h" || cmd == "help") {
       usage(std::cout);
@@ -174,7 +206,7 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
       std::cout << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n";
       return 0;
     }
-    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, deconvolve, --help, --version\n";
+    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, merge, deconvolve, --help, --version\n";
     usage(std::cerr);
     return 2;
   } catch (const ConfigError& e) {

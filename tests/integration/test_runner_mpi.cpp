@@ -1,7 +1,9 @@
 // A matrix over MPI ranks (mpirun -n 2 --oversubscribe closurelab run ...): the table equals the serial one except
-// timings and provenance, each row records the run's ranks; a re-run resumes from the finished cells (nothing
-// computed, table unchanged); an invalid spec exits 2 on rank 0 and releases the other rank (no hang). Skipped in a
-// build without MPI (CLOSURELAB_WITH_MPI=OFF). Runs in about 2 s (mostly mpirun's start, ~0.3 s a launch).
+// timings and provenance, and each row records the run's ranks; a re-run resumes from the finished cells (nothing
+// computed, the table unchanged; one cell file removed: that cell alone is computed); an invalid spec exits 2 on
+// rank 0 and releases the other rank (no hang); --jobs with several ranks is refused. Skipped in a build without
+// MPI (CLOSURELAB_WITH_MPI=OFF). Takes about 9 s: mpirun's start and end, ~0.8 s a launch, ~2.7 s for a failed
+// one (mpirun's teardown).
 #include <gtest/gtest.h>
 
 #include "core/base/params.hpp"
@@ -58,6 +60,12 @@ TEST(RunnerMpi, TwoRanksGiveTheSerialTableAndAReRunResumes) {
   ASSERT_EQ(again.code, 0) << again.err;
   EXPECT_NE(again.err.find("0 computed, 6 cached"), std::string::npos) << again.err;
   EXPECT_EQ(read_text(work / "mpi" / "ranks.json"), before);
+  // A job killed after some cells: the missing cell alone is computed again, and the table is the serial one.
+  fs::remove(work / "mpi" / "cells" / (b.at("rows").at(4).at("id").get<std::string>() + ".json"));
+  const CliOutcome resumed = mpirun_closurelab(work, "run " + spec_arg + " --out " + (work / "mpi").string());
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find("1 computed, 5 cached"), std::string::npos) << resumed.err;
+  EXPECT_EQ(without_timings(read(work / "mpi" / "ranks.json")), without_timings(a));
 }
 
 TEST(RunnerMpi, AnInvalidSpecExitsTwoOnRankZeroAndReleasesTheOthers) {

@@ -6,8 +6,9 @@
 namespace closurelab::testing {
 
 // `table` without what depends on the run rather than on the cells: every "provenance" object (when, where,
-// threads, ranks), keys holding a time ("...seconds", "..._per_second"), the peak memory, and whether a shared
-// direct reference was reused from an earlier cell of the same process (schedule-dependent), at any depth.
+// threads, ranks), keys holding a time or a ratio of times ("...seconds", "..._per_second", "speed_up"), the peak
+// memory, and whether a shared direct reference was reused from an earlier cell of the same process (it depends
+// on the schedule), at any depth.
 inline json without_timings(const json& table) {
   if (table.is_array()) {
     json out = json::array();
@@ -18,7 +19,7 @@ inline json without_timings(const json& table) {
   json out = json::object();
   for (const auto& [k, v] : table.items()) {
     if (k == "provenance" || k.find("seconds") != std::string::npos || k.find("per_second") != std::string::npos ||
-        k.find("peak_memory") != std::string::npos || k == "reused_from_an_earlier_cell")
+        k == "speed_up" || k.find("peak_memory") != std::string::npos || k == "reused_from_an_earlier_cell")
       continue;
     out[k] = without_timings(v);
   }

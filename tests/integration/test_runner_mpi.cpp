@@ -1,9 +1,10 @@
 // A matrix over MPI ranks (mpirun -n 2 --oversubscribe closurelab run ...): the table equals the serial one except
-// timings and provenance, and each row records the run's ranks; a re-run resumes from the finished cells (nothing
-// computed, the table unchanged; one cell file removed: that cell alone is computed); an invalid spec exits 2 on
-// rank 0 and releases the other rank (no hang); --jobs with several ranks is refused. Skipped in a build without
-// MPI (CLOSURELAB_WITH_MPI=OFF). Takes about 9 s: mpirun's start and end, ~0.8 s a launch, ~2.7 s for a failed
-// one (mpirun's teardown).
+// timings and provenance, also for reduced-model cells that share a direct reference (computed once per rank), and
+// each row records the run's ranks; a re-run resumes from the finished cells (nothing computed, the table
+// unchanged; one cell file removed: that cell alone is computed); an invalid spec exits 2 on rank 0 and releases
+// the other rank (no hang); --jobs with several ranks is refused. Skipped in a build without MPI
+// (CLOSURELAB_WITH_MPI=OFF). Takes about 11 s: mpirun's start and end, ~0.8 s a launch, ~2.7 s for a failed one
+// (mpirun's teardown).
 #include <gtest/gtest.h>
 
 #include "core/base/params.hpp"
@@ -66,6 +67,29 @@ TEST(RunnerMpi, TwoRanksGiveTheSerialTableAndAReRunResumes) {
   ASSERT_EQ(resumed.code, 0) << resumed.err;
   EXPECT_NE(resumed.err.find("1 computed, 5 cached"), std::string::npos) << resumed.err;
   EXPECT_EQ(without_timings(read(work / "mpi" / "ranks.json")), without_timings(a));
+}
+
+TEST(RunnerMpi, ReducedModelCellsSharingADirectReferenceGiveTheSerialTable) {
+  if (!have_mpi()) GTEST_SKIP() << "built without MPI (CLOSURELAB_WITH_MPI=OFF) or no mpiexec";
+  // Three closures on one kolmogorov scene: each rank runs the shared direct reference itself (once per process).
+  const auto work = fresh_work_folder("mpi_reduced");
+  write_text(work / "rm.json", R"({"name": "rm", "kind": "reduced_model",
+    "base": {"scene": {"name": "kolmogorov", "n_y": 32, "k": 4, "eta_over_ly": 0.0625},
+             "quadrature": {"name": "coarse", "stride_x": 0, "stride_y": 1},
+             "solver": {"mode": "target_time", "target_time": 0.02, "spacing_over_eta": 0.5, "scheme": "staggered"},
+             "reference": {"direct_sph": true, "solver": {"mode": "target_time", "target_time": 0.02}}},
+    "cells": [{"label": "lw0", "closure.deconvolver": {"name": "landweber", "order": 0}},
+              {"label": "lw1", "closure.deconvolver": {"name": "landweber", "order": 1}},
+              {"label": "cgls", "closure.deconvolver": {"name": "cgls", "iterations": 5},
+               "closure.discretization": "coarse_fine"}]})");
+  const std::string spec_arg = (work / "rm.json").string();
+  const CliOutcome serial = run_closurelab(work, "run " + spec_arg + " --out " + (work / "serial").string());
+  ASSERT_EQ(serial.code, 0) << serial.err;
+  const CliOutcome mpi = mpirun_closurelab(work, "run " + spec_arg + " --out " + (work / "mpi").string());
+  ASSERT_EQ(mpi.code, 0) << mpi.err;
+  const json a = read(work / "serial" / "rm.json"), b = read(work / "mpi" / "rm.json");
+  for (const json& row : a.at("rows")) EXPECT_EQ(row.at("status"), "ok") << row.dump();
+  EXPECT_EQ(without_timings(a), without_timings(b));
 }
 
 TEST(RunnerMpi, AnInvalidSpecExitsTwoOnRankZeroAndReleasesTheOthers) {

@@ -77,7 +77,8 @@ void schedule_cells(const std::vector<CellTask>& tasks, int jobs, int threads_pe
   for (int j = 0; j < jobs; ++j)
     pool.emplace_back([&]() {
       omp_set_num_threads(threads_per_job);
-      while (const auto i = take()) deliver(tasks[*i], compute_cell(tasks[*i], registry, provenance, threads_per_job, group));
+      while (const auto i = take())
+        deliver(tasks[*i], compute_cell(tasks[*i], registry, provenance, threads_per_job, group));
     });
   // The other ranks, served from this (the calling) thread; the task sent to each rank pairs it with its row.
   std::vector<std::size_t> sent(static_cast<std::size_t>(group.size()), 0);
@@ -88,7 +89,9 @@ void schedule_cells(const std::vector<CellTask>& tasks, int jobs, int threads_pe
         sent[static_cast<std::size_t>(rank)] = *i;
         return tasks[*i].dump(-1, ' ', false, json::error_handler_t::replace);
       },
-      [&](const std::string& text, int rank) { deliver(tasks[sent[static_cast<std::size_t>(rank)]], json::parse(text)); });
+      [&](const std::string& text, int rank) {
+        deliver(tasks[sent[static_cast<std::size_t>(rank)]], json::parse(text));
+      });
   for (auto& t : pool) t.join();
 }
 
@@ -96,7 +99,8 @@ void work_on_cells(const Registry& registry, const json& provenance, const RankG
   const int threads = omp_get_max_threads();
   group.work([&](const std::string& text) {
     const CellTask task = json::parse(text);
-    return compute_cell(task, registry, provenance, threads, group).dump(-1, ' ', false, json::error_handler_t::replace);
+    return compute_cell(task, registry, provenance, threads, group)
+        .dump(-1, ' ', false, json::error_handler_t::replace);
   });
 }
 

@@ -1,5 +1,5 @@
-// The command-line program of closurelab (list, run, deconvolve), as a function that a user's executable calls
-// with its own registration hook (experiments/runner/closurelab_main.hpp); the stock `closurelab` calls it
+// The command-line program of closurelab (list, run, merge, deconvolve), as a function that a user's executable
+// calls with its own registration hook (experiments/runner/closurelab_main.hpp); the stock `closurelab` calls it
 // with none (main.cpp).
 //   closurelab list [family]
 //   closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--shard i/N]   (also under mpirun -n K)

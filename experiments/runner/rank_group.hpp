@@ -24,10 +24,14 @@ class RankGroup {
 
   // Rank 0: serves the other ranks until each has been told to stop. `next_task(rank)` gives the text of the
   // next task for that rank, or nothing when there is none left (the rank is then told to stop); every result a
-  // rank sends back goes to `on_result(result, rank)` before that rank's next task is asked for. Waiting polls with short sleeps, so a waiting
-  // rank 0 does not take a core from the cells. Returns at once in a group of one.
+  // rank sends back goes to `on_result(result, rank)` before that rank's next task is asked for. Waiting polls with
+  // short sleeps, so a waiting rank 0 does not take a core from the cells. Returns at once in a group of one.
   void serve(const std::function<std::optional<std::string>(int rank)>& next_task,
              const std::function<void(const std::string& result, int rank)>& on_result) const;
+
+  // Ends every rank of the run at once (MPI_Abort) with `code`, when an error leaves rank 0 unable to release
+  // the others; returns (doing nothing) in a group of one.
+  void abort(int code) const;
 
   // Ranks > 0: asks rank 0 for tasks, computes each with `compute` and sends back its result; returns when rank 0
   // says stop.

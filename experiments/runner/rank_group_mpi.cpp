@@ -79,6 +79,10 @@ void RankGroup::serve(const std::function<std::optional<std::string>(int)>& next
   }
 }
 
+void RankGroup::abort(int code) const {
+  if (size_ > 1) MPI_Abort(MPI_COMM_WORLD, code);
+}
+
 void RankGroup::work(const std::function<std::string(const std::string&)>& compute) const {
   send("", 0, kReady);
   for (;;) {

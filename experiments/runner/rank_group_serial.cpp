@@ -1,8 +1,8 @@
 // The rank group of a build without MPI (CLOSURELAB_WITH_MPI=OFF): always one rank.
-#include "experiments/runner/rank_group.hpp"
-
 #include <cstdlib>
 #include <iostream>
+
+#include "experiments/runner/rank_group.hpp"
 
 namespace closurelab {
 
@@ -18,6 +18,8 @@ RankGroup::~RankGroup() = default;
 
 void RankGroup::serve(const std::function<std::optional<std::string>(int)>&,
                       const std::function<void(const std::string&, int)>&) const {}
+
+void RankGroup::abort(int) const {}
 
 void RankGroup::work(const std::function<std::string(const std::string&)>&) const {}
 

@@ -7,7 +7,9 @@ namespace closurelab {
 
 namespace fs = std::filesystem;
 
-fs::path cell_file(const std::string& out_dir, const std::string& id) { return fs::path(out_dir) / "cells" / (id + ".json"); }
+fs::path cell_file(const std::string& out_dir, const std::string& id) {
+  return fs::path(out_dir) / "cells" / (id + ".json");
+}
 
 std::optional<json> stored_row(const fs::path& file, const json& resolved) {
   try {
@@ -40,8 +42,8 @@ bool write_table(const fs::path& file, const json& table, bool computed_any) {
     try {
       if (fs::exists(file)) {
         const json old = read_json_file(file.string());
-        if (old.value("complete", false) && table.value("complete", false) && old.value("spec", json()) == table.at("spec") &&
-            old.value("rows", json()) == table.at("rows"))
+        if (old.value("complete", false) && table.value("complete", false) &&
+            old.value("spec", json()) == table.at("spec") && old.value("rows", json()) == table.at("rows"))
           return false;
       }
     } catch (const std::exception&) {

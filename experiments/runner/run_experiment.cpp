@@ -24,9 +24,12 @@ namespace {
 
 std::string format_seconds(double s) {
   char buf[32];
-  if (s < 90) std::snprintf(buf, sizeof buf, "%.0f s", s);
-  else if (s < 5400) std::snprintf(buf, sizeof buf, "%.1f min", s / 60);
-  else std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
+  if (s < 90)
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 5400)
+    std::snprintf(buf, sizeof buf, "%.1f min", s / 60);
+  else
+    std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
   return buf;
 }
 
@@ -42,8 +45,9 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
   try {
     check_output_folder(options.out_dir);  // before anything is validated or computed; writes nothing
     if (options.jobs > 1 && group.size() > 1)
-      throw ConfigError("--jobs", "with mpirun each rank computes one cell at a time: give more ranks instead of --jobs " +
-                                      std::to_string(options.jobs));
+      throw ConfigError("--jobs",
+                        "with mpirun each rank computes one cell at a time: give more ranks instead of --jobs " +
+                            std::to_string(options.jobs));
   } catch (const ConfigError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return give_up(2);
@@ -66,7 +70,8 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
   }
   // This run's cells (a shard's share, or all), the finished ones taken from DIR/cells.
   const std::string tag = "[" + name + "] ";
-  const std::vector<int> shard_of = shard.active() ? assign_shards(matrix->costs, shard.count) : std::vector<int>(cells.size(), 0);
+  const std::vector<int> shard_of =
+      shard.active() ? assign_shards(matrix->costs, shard.count) : std::vector<int>(cells.size(), 0);
   std::vector<std::size_t> mine, to_compute;
   std::vector<std::string> mine_ids;
   std::vector<json> rows(cells.size());
@@ -107,41 +112,50 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
   const int slots = jobs * group.size();
   std::vector<CellTask> tasks;
   for (std::size_t i : hand_out_order(to_compute, matrix->costs, slots))
-    tasks.push_back({{"experiment", name}, {"kind", matrix->kind->name()}, {"index", i}, {"total", cells.size()},
-                     {"id", cells[i].id}, {"label", cells[i].label}, {"resolved", matrix->resolved[i]}});
+    tasks.push_back({{"experiment", name},
+                     {"kind", matrix->kind->name()},
+                     {"index", i},
+                     {"total", cells.size()},
+                     {"id", cells[i].id},
+                     {"label", cells[i].label},
+                     {"resolved", matrix->resolved[i]}});
   double computed_seconds = 0.0, first_seconds = 0.0;  // the first computed cell may carry shared work
   std::string write_error;
-  schedule_cells(tasks, jobs, threads_per_job, registry, provenance_here, group, [&](const CellTask& t, const json& row) {
-    const std::size_t i = t.at("index").get<std::size_t>();
-    const double secs = row.at("cell_wall_seconds").get<double>();
-    try {
-      write_row(cell_file(options.out_dir, cells[i].id), row);  // at once: a killed run resumes from here
-      rows[i] = row;
-      done[i] = true;
-      if (computed++ == 0) first_seconds = secs;
-      else computed_seconds += secs;
-      ++finished;
-      if (!shard.active()) write_table(table_file, make_table(spec, options.spec_file, finished_rows(), false), true);
-    } catch (const std::exception& e) {
-      write_error = e.what();
-      return false;
-    }
-    // One line per cell with an estimate of the time left (from the cells computed so far): the mean of the
-    // computed cells times the cells left over the cells computed at once; the first computed cell is left out of
-    // the mean once there are others (it may have done work the others reuse, e.g. a direct SPH reference).
-    const std::size_t left = mine.size() - finished;
-    std::string line = tag + "cell " + std::to_string(i + 1) + "/" + std::to_string(cells.size()) + " (" + cells[i].label +
-                       ") " + row.value("status", "?") + " in " + format_seconds(secs) + "; " + std::to_string(finished) +
-                       "/" + std::to_string(mine.size()) + " done";
-    const double mean = computed > 1 ? computed_seconds / static_cast<double>(computed - 1) : first_seconds;
-    if (left > 0) line += ", about " + format_seconds(mean * static_cast<double>(left) / slots) + " left";
-    if (row.contains("error") && row["error"].is_string()) line += ": " + row["error"].get<std::string>();
-    log_line(line);
-    return true;
-  });
+  schedule_cells(
+      tasks, jobs, threads_per_job, registry, provenance_here, group, [&](const CellTask& t, const json& row) {
+        const std::size_t i = t.at("index").get<std::size_t>();
+        const double secs = row.at("cell_wall_seconds").get<double>();
+        try {
+          write_row(cell_file(options.out_dir, cells[i].id), row);  // at once: a killed run resumes from here
+          rows[i] = row;
+          done[i] = true;
+          if (computed++ == 0)
+            first_seconds = secs;
+          else
+            computed_seconds += secs;
+          ++finished;
+          if (!shard.active())
+            write_table(table_file, make_table(spec, options.spec_file, finished_rows(), false), true);
+        } catch (const std::exception& e) {
+          write_error = e.what();
+          return false;
+        }
+        // One line per cell with an estimate of the time left (from the cells computed so far): the mean of the
+        // computed cells times the cells left over the cells computed at once; the first computed cell is left out of
+        // the mean once there are others (it may have done work the others reuse, e.g. a direct SPH reference).
+        const std::size_t left = mine.size() - finished;
+        std::string line = tag + "cell " + std::to_string(i + 1) + "/" + std::to_string(cells.size()) + " (" +
+                           cells[i].label + ") " + row.value("status", "?") + " in " + format_seconds(secs) + "; " +
+                           std::to_string(finished) + "/" + std::to_string(mine.size()) + " done";
+        const double mean = computed > 1 ? computed_seconds / static_cast<double>(computed - 1) : first_seconds;
+        if (left > 0) line += ", about " + format_seconds(mean * static_cast<double>(left) / slots) + " left";
+        if (row.contains("error") && row["error"].is_string()) line += ": " + row["error"].get<std::string>();
+        log_line(line);
+        return true;
+      });
   if (!write_error.empty()) {
-    std::cerr << "error: " << write_error << "\nerror: the run stopped; " << computed << " cell(s) computed in this run are kept in "
-              << (fs::path(options.out_dir) / "cells").string() << "\n";
+    std::cerr << "error: " << write_error << "\nerror: the run stopped; " << computed
+              << " cell(s) computed in this run are kept in " << (fs::path(options.out_dir) / "cells").string() << "\n";
     return 1;
   }
   std::size_t failed = 0;
@@ -151,10 +165,11 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
   try {
     if (shard.active()) {
       write_shard_note(options.out_dir, shard, spec, options.spec_file, mine_ids, true);
-      std::cerr << tag << "shard " << shard.text() << " done (" << counts << "); when every shard is done: closurelab merge "
-                << options.out_dir << "\n";
+      std::cerr << tag << "shard " << shard.text() << " done (" << counts
+                << "); when every shard is done: closurelab merge " << options.out_dir << "\n";
     } else {
-      const bool written = write_table(table_file, make_table(spec, options.spec_file, finished_rows(), true), computed > 0);
+      const bool written =
+          write_table(table_file, make_table(spec, options.spec_file, finished_rows(), true), computed > 0);
       if (!written) std::cerr << tag << "nothing computed; " << table_file.string() << " left as it is\n";
       std::cerr << tag << (written ? "wrote " : "kept ") << table_file.string() << " (" << counts << ")\n";
     }
@@ -170,7 +185,18 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
 
 int run_experiment(const json& spec, const Registry& registry, const RunOptions& options) {
   const RankGroup group;  // MPI_Init under mpirun; MPI_Finalize when the run is over
-  if (group.rank() == 0) return run_as_rank0(spec, registry, options, group);
+  if (group.rank() == 0) {
+    try {
+      return run_as_rank0(spec, registry, options, group);
+    } catch (const std::exception& e) {
+      // Unexpected: the other ranks may still wait for cells; end them rather than hang in MPI_Finalize.
+      if (group.size() > 1) {
+        std::cerr << "error: " << e.what() << "\n";
+        group.abort(1);
+      }
+      throw;
+    }
+  }
   work_on_cells(registry, provenance(options.command_line), group);
   return 0;
 }

@@ -55,8 +55,8 @@ std::string shard_lock_name(const Shard& shard) {
 
 void write_shard_note(const std::string& dir, const Shard& shard, const json& spec, const std::string& spec_file,
                       const std::vector<std::string>& cell_ids, bool complete) {
-  const json note = {{"shard", shard.index}, {"count", shard.count}, {"spec", spec},          {"spec_file", spec_file},
-                     {"cells", cell_ids},    {"complete", complete}};
+  const json note = {{"shard", shard.index},   {"count", shard.count}, {"spec", spec},
+                     {"spec_file", spec_file}, {"cells", cell_ids},    {"complete", complete}};
   write_file_atomically((fs::path(dir) / "shards" / note_name(shard.index, shard.count)).string(), note.dump(2) + "\n");
 }
 
@@ -74,11 +74,13 @@ int merge_shards(const std::string& dir, const Registry& registry, const std::st
   const int count = first.at("count").get<int>();
   std::vector<bool> noted(static_cast<std::size_t>(count), false), finished(static_cast<std::size_t>(count), false);
   for (const json& n : notes) {
-    if (n.at("count") != first.at("count") || n.at("spec") != first.at("spec") || n.at("spec_file") != first.at("spec_file"))
+    if (n.at("count") != first.at("count") || n.at("spec") != first.at("spec") ||
+        n.at("spec_file") != first.at("spec_file"))
       throw ConfigError("DIR", "the shard notes in '" + notes_dir.string() +
                                    "' come from different runs (other specs or shard counts); keep those of one run");
     const int i = n.at("shard").get<int>();
-    if (i < 0 || i >= count) throw ConfigError("DIR", "a shard note in '" + notes_dir.string() + "' names shard " + std::to_string(i));
+    if (i < 0 || i >= count)
+      throw ConfigError("DIR", "a shard note in '" + notes_dir.string() + "' names shard " + std::to_string(i));
     noted[static_cast<std::size_t>(i)] = true;
     finished[static_cast<std::size_t>(i)] = n.value("complete", false);
   }
@@ -104,11 +106,14 @@ int merge_shards(const std::string& dir, const Registry& registry, const std::st
   }
   if (!missing.empty()) {
     for (const auto& m : missing) std::cerr << "error: missing " << m << "\n";
-    std::cerr << "error: " << missing.size() << " of " << cells.size() << " cell(s) missing; nothing was written. Run:\n";
+    std::cerr << "error: " << missing.size() << " of " << cells.size()
+              << " cell(s) missing; nothing was written. Run:\n";
     for (int s = 0; s < count; ++s)
       if (shard_missing[static_cast<std::size_t>(s)])
         std::cerr << "  closurelab run " << spec_file << " --out " << dir << " --shard " << s << "/" << count << "   ("
-                  << (!noted[static_cast<std::size_t>(s)] ? "never run" : finished[static_cast<std::size_t>(s)] ? "finished" : "did not finish")
+                  << (!noted[static_cast<std::size_t>(s)]     ? "never run"
+                      : finished[static_cast<std::size_t>(s)] ? "finished"
+                                                              : "did not finish")
                   << ")\n";
     return 2;
   }
@@ -124,8 +129,9 @@ int merge_shards(const std::string& dir, const Registry& registry, const std::st
   for (const auto& r : rows) failed += r.value("status", "") == "error";
   try {
     const bool written = write_table(table_file, make_table(spec, spec_file, rows, true), false);
-    std::cerr << "[" << spec.at("name").get<std::string>() << "] " << (written ? "wrote " : "kept ") << table_file.string()
-              << " (" << cells.size() << " cells from " << count << " shard(s), " << failed << " failed)\n";
+    std::cerr << "[" << spec.at("name").get<std::string>() << "] " << (written ? "wrote " : "kept ")
+              << table_file.string() << " (" << cells.size() << " cells from " << count << " shard(s), " << failed
+              << " failed)\n";
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\nerror: the table was not written\n";
     return 1;

@@ -23,16 +23,19 @@ const char* spec = R"({"name": "ranks", "kind": "direct_sph_validation",
 
 json read(const fs::path& p) { return closurelab::read_json_file(p.string()); }
 
-// `mpirun -n 2 closurelab ARGS`, allowed as root (CI runs as root), one OpenMP thread a rank, killed after 120 s
-// should the ranks ever wait on each other forever.
+// `mpirun -n 2 closurelab ARGS`, allowed as root (CI runs as root), one OpenMP thread a rank, not bound to a core
+// (two tests at once would pin their ranks to the same cores), killed after 120 s should the ranks ever wait on
+// each other forever.
 CliOutcome mpirun_closurelab(const fs::path& work, const std::string& args) {
   return run_shell(work, "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 timeout 120 " +
-                             std::string(CLOSURELAB_MPIEXEC) + " -n 2 --oversubscribe " + CLOSURELAB_BINARY_DIR +
+                             std::string(CLOSURELAB_MPIEXEC) + " -n 2 --oversubscribe --bind-to none " + CLOSURELAB_BINARY_DIR +
                              "/experiments/closurelab " + args);
 }
 
-bool have_mpi() { return CLOSURELAB_WITH_MPI && std::string(CLOSURELAB_MPIEXEC).find("NOTFOUND") == std::string::npos &&
-                         !std::string(CLOSURELAB_MPIEXEC).empty(); }
+bool have_mpi() {
+  return CLOSURELAB_WITH_MPI && std::string(CLOSURELAB_MPIEXEC).find("NOTFOUND") == std::string::npos &&
+         !std::string(CLOSURELAB_MPIEXEC).empty();
+}
 
 }  // namespace
 
@@ -97,7 +100,8 @@ TEST(RunnerMpi, AnInvalidSpecExitsTwoOnRankZeroAndReleasesTheOthers) {
   const auto work = fresh_work_folder("mpi_invalid");
   write_text(work / "bad.json", R"({"name": "bad", "kind": "direct_sph_validation",
     "base": {"scene": {"name": "poiseuille-uniform", "n_y": -4}}})");
-  const CliOutcome o = mpirun_closurelab(work, "run " + (work / "bad.json").string() + " --out " + (work / "out").string());
+  const CliOutcome o =
+      mpirun_closurelab(work, "run " + (work / "bad.json").string() + " --out " + (work / "out").string());
   EXPECT_EQ(o.code, 2) << o.err;
   EXPECT_NE(o.err.find("n_y"), std::string::npos) << o.err;
   EXPECT_FALSE(fs::exists(work / "out"));
@@ -107,8 +111,8 @@ TEST(RunnerMpi, JobsWithSeveralRanksIsRefused) {
   if (!have_mpi()) GTEST_SKIP() << "built without MPI (CLOSURELAB_WITH_MPI=OFF) or no mpiexec";
   const auto work = fresh_work_folder("mpi_jobs");
   write_text(work / "ranks.json", spec);
-  const CliOutcome o =
-      mpirun_closurelab(work, "run " + (work / "ranks.json").string() + " --out " + (work / "out").string() + " --jobs 2");
+  const CliOutcome o = mpirun_closurelab(
+      work, "run " + (work / "ranks.json").string() + " --out " + (work / "out").string() + " --jobs 2");
   EXPECT_EQ(o.code, 2) << o.err;
   EXPECT_NE(o.err.find("--jobs"), std::string::npos) << o.err;
   EXPECT_FALSE(fs::exists(work / "out"));

@@ -30,7 +30,9 @@ TEST(CellScheduling, CostliestFirstOnlyWhenSeveralRunAtOnce) {
 
 TEST(CellScheduling, DefaultExpectedCostGrowsWithResolutionAndModelTime) {
   const ExperimentKind& kind = find_experiment_kind("direct_sph_validation", "/kind");
-  auto cost = [&](int n_y, const json& solver) { return kind.expected_cost({{"scene", {{"n_y", n_y}}}, {"solver", solver}}); };
+  auto cost = [&](int n_y, const json& solver) {
+    return kind.expected_cost({{"scene", {{"n_y", n_y}}}, {"solver", solver}});
+  };
   const json to_time = {{"mode", "target_time"}, {"target_time", 0.5}, {"max_time", 100.0}};
   const json steady = {{"mode", "steady"}, {"target_time", 0.5}, {"max_time", 100.0}};
   EXPECT_DOUBLE_EQ(cost(32, to_time), 32.0 * 32 * 32 * 0.5);
@@ -46,6 +48,7 @@ TEST(CellScheduling, ShardSyntax) {
   EXPECT_TRUE(s.active());
   EXPECT_EQ(s.text(), "3/8");
   EXPECT_EQ(parse_shard("0/1").count, 1);
-  for (const char* bad : {"8/8", "", "3", "3/", "/8", "-1/8", "3/-8", "3/0", "03/8", "3/08", " 3/8", "3/8 ", "x/8", "1e1/20"})
+  for (const char* bad :
+       {"8/8", "", "3", "3/", "/8", "-1/8", "3/-8", "3/0", "03/8", "3/08", " 3/8", "3/8 ", "x/8", "1e1/20"})
     EXPECT_THROW(parse_shard(bad), ConfigError) << bad;
 }

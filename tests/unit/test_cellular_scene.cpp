@@ -1,5 +1,6 @@
 // The cellular-flow scene: its exact field against the equations it claims to solve (finite differences), the
-// Gaussian average of the mode against a 2D GSL quadrature, and the scene's declaration (force, start, errors).
+// Gaussian average of the mode against a 2D GSL quadrature, the scene's declaration (force, start, bad input), and
+// the experiment kinds that need an x-invariant scene refusing it.
 #include <gtest/gtest.h>
 #include <gsl/gsl_integration.h>
 
@@ -10,6 +11,7 @@
 #include "core/base/registry.hpp"
 #include "core/scenes/analytic.hpp"
 #include "core/sph/scene.hpp"
+#include "experiments/kinds/experiment_kind.hpp"
 
 using namespace closurelab;
 
@@ -161,4 +163,19 @@ TEST(CellularScene, BadInputNamesTheParameter) {
   EXPECT_EQ(path_of({{"n", 16}, {"m", 4}}), "/scene/n");       // fewer than 8 particles per cell
   EXPECT_EQ(path_of({{"eta_over_l", 0.2}}), "/scene/eta_over_l");
   EXPECT_EQ(path_of({{"re", 0.0}}), "/scene/re");
+}
+
+TEST(CellularScene, KindsThatNeedAnXInvariantSceneRefuseIt) {
+  const json cell = {{"scene", {{"name", "cellular"}, {"n", 16}}}};
+  const auto refused_at = [&](const std::string& kind) {
+    try {
+      find_experiment_kind(kind, "/kind").resolve(cell, "", builtin_registry());
+    } catch (const ConfigError& e) {
+      return e.path();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refused_at("reduced_model"), "/scene");
+  EXPECT_EQ(refused_at("quadrature_convergence"), "/scene");
+  EXPECT_EQ(refused_at("direct_sph_validation"), "accepted");
 }

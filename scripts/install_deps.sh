@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian packages closurelab needs (only those missing). Works as root or with sudo.
+# Open MPI (libopenmpi-dev openmpi-bin) is optional for the build (CLOSURELAB_WITH_MPI) and installed for the
+# mpirun test of the runner.
 set -euo pipefail
 packages=(cmake g++ make git libeigen3-dev libgsl-dev nlohmann-json3-dev libsuitesparse-dev libgtest-dev
-          libbenchmark-dev libomp-dev libhdf5-dev python3 python3-h5py)
+          libbenchmark-dev libomp-dev libhdf5-dev python3 python3-h5py libopenmpi-dev openmpi-bin)
 # python3-h5py: the tests check that the reference store's H5Part files open in h5py, and read one it wrote.
 # The figures of scripts/reproduce.sh also need python3-matplotlib: `scripts/install_deps.sh --figures`.
 [ "${1:-}" = "--figures" ] && packages+=(python3-matplotlib)

@@ -73,6 +73,14 @@ double LayeredChannelFlow::peak_height() const {
   return rho_g_ != 0.0 ? std::clamp(l1_ + shear_at_l1_ / rho_g_, l1_, l2_) : 0.5 * (l1_ + l2_);
 }
 
+Vec2 cellular_mode(double x, double y, double k) {
+  return {std::sin(k * x) * std::cos(k * y), -std::cos(k * x) * std::sin(k * y)};
+}
+
+double cellular_pressure(double x, double y, double k, double rho, double amplitude) {
+  return 0.25 * rho * amplitude * amplitude * (std::cos(2.0 * k * x) + std::cos(2.0 * k * y));
+}
+
 double poiseuille_averaged_b2(double y, double l1, double l2, double rho, double g, double mu, double eta) {
   return -rho * g / (2.0 * mu) * (0.5 * eta * eta + y * y - (l1 + l2) * y + l1 * l2);
 }

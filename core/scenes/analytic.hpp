@@ -3,6 +3,8 @@
 #include <functional>
 #include <vector>
 
+#include "core/base/mesh.hpp"
+
 namespace closurelab {
 
 // (5.15): Poiseuille flow between walls at l1 and l2 under a uniform force g; zero outside [l1, l2].
@@ -35,6 +37,15 @@ class LayeredChannelFlow {
   double l1_, l2_, rho_g_, shear_at_l1_ = 0.0;
   std::vector<double> start_, mu_, v_start_;  // per segment: lower edge, viscosity, velocity at the lower edge
 };
+
+// Cellular flow in a doubly periodic box, k = 2π m / L (m cells per side): the divergence-free unit mode
+// (sin kx cos ky, −cos kx sin ky), an eigenfunction of the Laplacian with eigenvalue −2k². Under the body force
+// g · mode the steady Stokes velocity is A · mode with A = g / (2 k² ν); it is also the steady Navier–Stokes
+// velocity, the inertial term ρ (v·∇)v being balanced by the pressure below. From an initial A0 · mode, the
+// velocity stays a multiple of the mode: A(t) = A + (A0 − A) e^{−2k²νt}.
+Vec2 cellular_mode(double x, double y, double k);
+// p = ρ A² (cos 2kx + cos 2ky) / 4 (up to a constant), so that ρ (v·∇)v = −∇p for v = A · mode.
+double cellular_pressure(double x, double y, double k, double rho, double amplitude);
 
 // (B.2): the Gaussian average (window η) of the parabola of (5.15) continued beyond the walls.
 double poiseuille_averaged_b2(double y, double l1, double l2, double rho, double g, double mu, double eta);

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "core/scenes/analytic.hpp"
+#include "core/scenes/cellular_scene.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/memory_limit.hpp"
 #include "core/scenes/layered_scene.hpp"
@@ -19,6 +20,13 @@ ParticleSystem Scene::make_particles() const {
     const int ph = phase(y);
     for (int i = 0; i < nx; ++i) ps.add((i + 0.5) * dx, y, m, ph, is_wall(y));
   }
+  if (initial_velocity)
+    for (std::size_t a = 0; a < ps.size(); ++a) {
+      if (ps.fixed[a]) continue;
+      const Vec2 v = initial_velocity(ps.x[a], ps.y[a]);
+      ps.vx[a] = v.x();
+      ps.vy[a] = v.y();
+    }
   return ps;
 }
 
@@ -174,6 +182,7 @@ void finish_sound_speed(Scene& s) {
 
 void register_scenes(Registry& r) {
   register_layered_scene(r);
+  register_cellular_scene(r);
   r.scenes.add({"poiseuille-uniform", "Poiseuille flow between walls at 3 eta' and L_y - 3 eta', uniform force (par. 5)",
                 channel_schema()},
                [](const json& p) {

@@ -2,6 +2,7 @@
 // A scene (DESIGN.md §1, §5): geometry, walls, phases, body force, the SPH discretization, the stress
 // components the engine must compute, and the analytic steady solution where one exists.
 // Scenes are registered by name in the registry's "scene" family (core/scenes.cpp).
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <string>
@@ -52,6 +53,11 @@ struct Scene {
   // μ_ij of (5.1) for unlike particles (core/sph_pair_force.hpp).
   PairViscosityMean pair_viscosity_mean = PairViscosityMean::arithmetic;
   std::function<double(double y)> force_x;  // body force per unit mass along x
+  // Scenes whose force depends on x as well (not x-invariant) declare the whole body force per unit mass at a
+  // point instead; when set, the engine uses it and ignores force_x.
+  std::function<Vec2(double x, double y)> body_force;
+  // The initial velocity of the moving particles at their lattice sites (empty: at rest), set by make_particles().
+  std::function<Vec2(double x, double y)> initial_velocity;
 
   // SPH discretization.
   SmoothingKernel::Type smoothing_type = SmoothingKernel::Type::quintic;
@@ -78,6 +84,19 @@ struct Scene {
     double amplitude = 0.0;
   };
   std::optional<SineMode> steady_sine_mode;
+  // Cellular flow (not x-invariant; core/scenes/analytic.hpp): at every time t the exact velocity is
+  // amplitude(t) · (sin kx cos ky, −cos kx sin ky), k the wavenumber, relaxing from the initial to the steady
+  // amplitude at the rate 2 k² ν (a Taylor–Green vortex decays when unforced).
+  struct CellularMode {
+    double wavenumber = 0.0;         // k = 2π m / L, radians per unit length
+    double steady_amplitude = 0.0;   // g / (2 k² ν); 0 when unforced
+    double initial_amplitude = 0.0;  // 0: from rest
+    double decay_rate = 0.0;         // 2 k² ν
+    double amplitude(double t) const {
+      return steady_amplitude + (initial_amplitude - steady_amplitude) * std::exp(-decay_rate * t);
+    }
+  };
+  std::optional<CellularMode> cellular_mode;
 
   bool is_wall(double y) const { return has_walls && (y < wall_lo || y > wall_hi); }
   // The regions of the error tables (one definition): fluid, strictly between the wall surfaces (a node on a

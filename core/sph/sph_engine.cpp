@@ -170,8 +170,15 @@ void SphEngine::compute_accelerations() {
   for (int a : moving_) {
     double fx = 0.0, fy = 0.0;
     for (const auto& buf : thread_buf_) fx += buf[a], fy += buf[n + a];
-    ax_[a] = fx / ps_.mass[a] + scene_.force_x(ps_.y[a]);
+    ax_[a] = fx / ps_.mass[a];
     ay_[a] = fy / ps_.mass[a];
+    if (scene_.body_force) {
+      const Vec2 b = scene_.body_force(ps_.x[a], ps_.y[a]);
+      ax_[a] += b.x();
+      ay_[a] += b.y();
+    } else {
+      ax_[a] += scene_.force_x(ps_.y[a]);
+    }
   }
 }
 

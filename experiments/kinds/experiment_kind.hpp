@@ -37,6 +37,12 @@ class ExperimentKind {
   // Runs a resolved cell. Returns a row object with at least "errors" and "cost" objects and a "status"
   // string ("ok", "no_convergence", "numerical_issue"); the runner adds the resolved parameters.
   virtual json run(const json& resolved, const Registry& registry, const ProgressFn& progress) const = 0;
+  // The expected cost of a resolved cell in arbitrary units; only the order matters: the runner hands out the
+  // costliest cells first when several run at once, and balances shards by it. Must be cheap. The default
+  // (experiment_kinds.cpp): n_y^3 times the model time (solver.target_time in target_time mode, else
+  // solver.max_time), from particles ~ n_y^2 at a fixed aspect ratio and steps ~ t / dt with dt ~ h ~ 1/n_y;
+  // a factor missing from the cell counts as 1.
+  virtual double expected_cost(const json& resolved) const;
 };
 
 // All experiment kinds known to the runner (experiments/experiment_kinds.cpp lists them explicitly).

@@ -21,6 +21,16 @@ const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds() {
   return kinds;
 }
 
+double ExperimentKind::expected_cost(const json& resolved) const {
+  auto positive = [](const json& obj, const char* key) {
+    return obj.is_object() && obj.contains(key) && obj[key].is_number() && obj[key].get<double>() > 0 ? obj[key].get<double>() : 1.0;
+  };
+  const json scene = resolved.value("scene", json()), solver = resolved.value("solver", json());
+  const double n_y = positive(scene, "n_y");
+  const bool to_time = solver.is_object() && solver.value("mode", "") == "target_time";
+  return n_y * n_y * n_y * positive(solver, to_time ? "target_time" : "max_time");
+}
+
 const ExperimentKind& find_experiment_kind(const std::string& name, const std::string& path) {
   std::string known;
   for (const auto& k : experiment_kinds()) {

@@ -78,6 +78,9 @@ class ReducedModel : public ExperimentKind {
     check_keys(cell, path, {"scene", "kernel", "closure", "quadrature", "solver", "reference", "transient", "oracle"});
     json out;
     auto scene = build_scene(cell, path, reg, &out["scene"]);
+    if (!scene->x_invariant)
+      throw ConfigError(path + "/scene",
+                        "scene '" + scene->name + "' is not x-invariant; the coarse solver handles x-invariant scenes only");
     if (!scene->analytic_vx) throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
     auto kernel = build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["closure"] = resolve_section(cell, "closure", closure_schema(), path);

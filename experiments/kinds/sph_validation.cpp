@@ -3,7 +3,8 @@
 // and its Gaussian average; errors in the interior and in the wall band (nodes whose window reaches
 // into a wall) separately, the effective wall position, the convective stress (App. B), and the cost.
 // Scenes with phase interfaces (layered-two-phase, §7) add errors near/away from the interfaces and the
-// final interface check (particles outside their phase region, row displacements, densities).
+// final interface check (particles outside their phase region, row displacements, densities). Cellular
+// scenes (not x-invariant) are compared in 2D instead (experiments/kinds/cellular_validation.cpp).
 #include "experiments/kinds/sph_validation.hpp"
 
 #include <Eigen/Dense>
@@ -18,6 +19,7 @@
 #include "core/sph/sph_kernel.hpp"
 #include "core/sph/sph_run.hpp"
 #include "experiments/runner/cell_config.hpp"
+#include "experiments/kinds/cellular_validation.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/runner/provenance.hpp"
 
@@ -134,7 +136,8 @@ class SphValidation : public ExperimentKind {
     check_keys(cell, path, {"scene", "kernel", "solver", "averaging"});
     json out;
     auto scene = build_scene(cell, path, reg, &out["scene"]);
-    if (!scene->analytic_vx) throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
+    if (!scene->analytic_vx && !scene->cellular_mode)
+      throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
     build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["solver"] = resolve_section(cell, "solver", sph_solver_schema(), path);
     check_time_loop(out["solver"], path + "/solver");
@@ -146,8 +149,13 @@ class SphValidation : public ExperimentKind {
     using clock = std::chrono::steady_clock;
     const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
     const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
-    const TensorMesh2D mesh =
-        column_mesh(scene->box, cfg.at("averaging").at("mesh_spacing_over_eta").get<double>() * scene->eta);
+    const double spacing = cfg.at("averaging").at("mesh_spacing_over_eta").get<double>() * scene->eta;
+    if (scene->cellular_mode) {
+      SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
+      opt.progress = progress;
+      return run_cellular_validation(*scene, *kernel, opt, spacing);
+    }
+    const TensorMesh2D mesh = column_mesh(scene->box, spacing);
     const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("solver"), mesh.y.spacing, {}};
     const StoredReference direct = stored_direct_reference(request, *scene, *kernel, progress);
     const ParticleSystem& ps = direct.particles;

@@ -1,8 +1,9 @@
-// The command-line program of closurelab (list, run, deconvolve), as a function that a user's executable calls
-// with its own registration hook (experiments/runner/closurelab_main.hpp); the stock `closurelab` calls it
+// The command-line program of closurelab (list, run, merge, deconvolve), as a function that a user's executable
+// calls with its own registration hook (experiments/runner/closurelab_main.hpp); the stock `closurelab` calls it
 // with none (main.cpp).
 //   closurelab list [family]
-//   closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR]
+//   closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR] [--shard i/N]   (also under mpirun -n K)
+//   closurelab merge DIR
 //   closurelab store [--store DIR]
 //   closurelab deconvolve --matrix A.mtx --rhs b.mtx [...]
 #include "experiments/runner/closurelab_main.hpp"
@@ -19,6 +20,7 @@
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/kinds/reference_store.hpp"
 #include "experiments/runner/runner.hpp"
+#include "experiments/runner/shards.hpp"
 
 namespace closurelab {
 
@@ -30,7 +32,9 @@ void usage(std::ostream& os) {
   os << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n"
      << "usage:\n"
      << "  closurelab list [FAMILY]                        families: " << families << "\n"
-     << "  closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR]\n"
+     << "  closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR] [--shard i/N]\n"
+     << "  mpirun -n K closurelab run SPEC.json [--out DIR] [--force] [--store DIR]\n"
+     << "  closurelab merge DIR                            the table of a run made in shards\n"
      << "  closurelab store [--store DIR]                  the reference store's entries and size\n"
      << "  closurelab deconvolve --matrix A.mtx --rhs b.mtx [--x-true x.mtx] --method NAME [--param k=v ...]\n"
      << "                        [--noise-level d] [--out x.mtx]\n"
@@ -38,16 +42,27 @@ void usage(std::ostream& os) {
 }
 
 const char* const run_usage =
-    "usage: closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR]\n"
+    "usage: closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR] [--shard i/N]\n"
+    "       mpirun -n K closurelab run SPEC.json [--out DIR] [--force] [--store DIR] [--shard i/N]\n"
     "  Expands the experiment matrix of SPEC.json, validates every cell before running any, runs them and writes\n"
     "  DIR/cells/<id>.json per cell and the table DIR/<name>.json. A finished cell is not run again.\n"
-    "  --out DIR   output folder (default: results); locked while the run writes\n"
-    "  --jobs N    cells run at once (default 1); the OpenMP threads are shared among them\n"
-    "  --force     recompute finished cells, and each direct SPH reference they use (once per run)\n"
-    "  --store DIR the reference store: direct SPH runs kept across cells, specs and runs (default\n"
-    "              $CLOSURELAB_STORE, else ~/.cache/closurelab/store); `closurelab store` lists it\n"
-    "  --help      this text\n"
+    "  --out DIR      output folder (default: results); locked while the run writes\n"
+    "  --jobs N       cells run at once (default 1); the OpenMP threads are shared among them\n"
+    "  --force        recompute finished cells, and each direct SPH reference they use (once per run)\n"
+    "  --store DIR    the reference store: direct SPH runs kept across cells, specs, runs and ranks (default\n"
+    "                 $CLOSURELAB_STORE, else ~/.cache/closurelab/store); `closurelab store` lists it\n"
+    "  --shard i/N    compute only the i-th of N cost-balanced shares (0 <= i < N) into DIR/cells and write no\n"
+    "                 table; the N shards may run at once on one DIR; then `closurelab merge DIR`\n"
+    "  --help         this text\n"
+    "  Under mpirun (built with MPI) the K ranks share the cells, one at a time each, costliest first; rank 0\n"
+    "  validates, hands out and writes.\n"
     "  Exit codes: 0 all cells ran, 1 a cell failed or a write failed, 2 bad input or the folder is in use.\n";
+
+const char* const merge_usage =
+    "usage: closurelab merge DIR\n"
+    "  Writes the table DIR/<name>.json of a run made with --out DIR --shard i/N (every i), as a single run would\n"
+    "  have written it. Every cell must be in DIR/cells; the missing ones are listed with the shards to run.\n"
+    "  Exit codes: 0 written, 1 a cell had failed or a write failed, 2 missing cells, bad input or the folder in use.\n";
 
 const char* const store_usage =
     "usage: closurelab store [--store DIR]\n"
@@ -149,8 +164,10 @@ int run_command(int argc, char** argv, const Registry& registry) {
     } else if (a == "--store") {
       store_dir = need("a folder");
       if (store_dir.empty()) throw ConfigError("", "--store needs a folder name, got ''");
+    } else if (a == "--shard") {
+      opt.shard = parse_shard(need("i/N"));
     } else if (!a.empty() && a[0] == '-') {
-      throw ConfigError("", "unknown option '" + a + "'; valid: --out, --jobs, --force, --store, --help");
+      throw ConfigError("", "unknown option '" + a + "'; valid: --out, --jobs, --force, --store, --shard, --help");
     } else if (spec_file.empty()) {
       spec_file = a;
     } else {
@@ -205,6 +222,20 @@ int store_command(int argc, char** argv) {
   return 0;
 }
 
+int merge_command(int argc, char** argv, const Registry& registry) {
+  if (wants_help(argc, argv)) {
+    std::cout << merge_usage;
+    return 0;
+  }
+  if (argc != 3 || argv[2][0] == '-') {
+    std::cerr << "error: merge takes one folder DIR\n" << merge_usage;
+    return 2;
+  }
+  std::string command_line;
+  for (int i = 0; i < argc; ++i) command_line.append(i ? " " : "").append(argv[i]);
+  return merge_shards(argv[2], registry, command_line);
+}
+
 }  // namespace
 
 int closurelab_main(int argc, char** argv, const UserRegistration& register_user) {
@@ -221,6 +252,7 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
     if (register_user) register_user(registry);
     if (cmd == "list") return list_command(argc, argv, registry);
     if (cmd == "run") return run_command(argc, argv, registry);
+    if (cmd == "merge") return merge_command(argc, argv, registry);
     if (cmd == "deconvolve") return run_deconvolve_command(argc, argv, registry);
     if (cmd == "store") return store_command(argc, argv);
     if (cmd == "--help" || cmd == "-h" || cmd == "help") {
@@ -231,7 +263,7 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
       std::cout << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n";
       return 0;
     }
-    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, deconvolve, store, --help, --version\n";
+    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, merge, deconvolve, store, --help, --version\n";
     usage(std::cerr);
     return 2;
   } catch (const ConfigError& e) {

@@ -39,11 +39,11 @@ void check_output_folder(const std::string& dir) {
     throw ConfigError("--out", "cannot create '" + dir + "': '" + parent.string() + "' is not writable: " + std::strerror(errno));
 }
 
-FolderLock::FolderLock(const std::string& dir, const std::string& command_line) {
+FolderLock::FolderLock(const std::string& dir, const std::string& command_line, const std::string& lock_name) {
   std::error_code ec;
   fs::create_directories(fs::path(dir) / "cells", ec);
   if (ec) throw std::runtime_error("cannot create folder '" + (fs::path(dir) / "cells").string() + "': " + ec.message());
-  const fs::path file = fs::path(dir) / ".closurelab.lock";
+  const fs::path file = fs::path(dir) / lock_name;
   fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) throw std::runtime_error("cannot create the lock file '" + file.string() + "': " + std::strerror(errno));
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {

@@ -11,13 +11,14 @@ namespace closurelab {
 // not a folder, or it is not writable (nor creatable under its nearest existing parent). Writes nothing.
 void check_output_folder(const std::string& dir);
 
-// An exclusive lock on `dir` (flock on `dir`/.closurelab.lock, released when the object dies or the process
-// ends, also on kill -9). The lock file holds the holder's pid, host, start date and command line.
+// An exclusive lock on `dir` (flock on `dir`/`lock_name`, by default .closurelab.lock; a shard of a run takes its
+// own, shards.hpp), released when the object dies or the process ends, also on kill -9. The lock file holds the
+// holder's pid, host, start date and command line.
 class FolderLock {
  public:
   // Creates `dir` if needed and takes the lock; throws FolderBusy naming the holder if another process has it,
   // std::runtime_error if the lock file cannot be created.
-  FolderLock(const std::string& dir, const std::string& command_line);
+  FolderLock(const std::string& dir, const std::string& command_line, const std::string& lock_name = ".closurelab.lock");
   ~FolderLock();
   FolderLock(const FolderLock&) = delete;
   FolderLock& operator=(const FolderLock&) = delete;

@@ -1,21 +1,13 @@
+// The experiment matrix: expansion of a spec into cells and their validation (running them: run_experiment.cpp).
 #include "experiments/runner/runner.hpp"
 
-#include <omp.h>
-
-#include <atomic>
-#include <chrono>
+#include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
-#include <memory>
-#include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "core/base/errors.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
-#include "experiments/runner/out_folder.hpp"
-#include "experiments/runner/provenance.hpp"
 #include "experiments/runner/spec_checks.hpp"
 
 namespace closurelab {
@@ -123,202 +115,28 @@ std::vector<MatrixCell> expand_matrix(const json& spec) {
   return cells;
 }
 
-namespace {
-
-// Whether `file` holds a complete table with exactly these rows and this spec (then a run that computed
-// nothing leaves it alone, whatever its header says).
-bool table_unchanged(const std::filesystem::path& file, const json& spec, const std::vector<json>& rows) {
+std::optional<ValidMatrix> validate_matrix(const json& spec, const Registry& registry) {
+  ValidMatrix m;
   try {
-    if (!std::filesystem::exists(file)) return false;
-    const json old = read_json_file(file.string());
-    return old.value("complete", false) && old.value("spec", json()) == spec && old.value("rows", json()) == json(rows);
-  } catch (const std::exception&) {
-    return false;
-  }
-}
-
-std::string format_seconds(double s) {
-  char buf[32];
-  if (s < 90) std::snprintf(buf, sizeof buf, "%.0f s", s);
-  else if (s < 5400) std::snprintf(buf, sizeof buf, "%.1f min", s / 60);
-  else std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
-  return buf;
-}
-
-}  // namespace
-
-int run_experiment(const json& spec, const Registry& registry, const RunOptions& options) {
-  namespace fs = std::filesystem;
-  std::vector<MatrixCell> cells;
-  const ExperimentKind* kind = nullptr;
-  std::vector<json> resolved;
-  std::vector<std::string> problems;
-  try {
-    check_output_folder(options.out_dir);  // before anything is validated or computed; writes nothing
-  } catch (const ConfigError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 2;
-  }
-  try {
-    cells = expand_matrix(spec);
-    kind = &find_experiment_kind(spec["kind"].get<std::string>(), "/kind");
+    m.cells = expand_matrix(spec);
+    m.kind = &find_experiment_kind(spec["kind"].get<std::string>(), "/kind");
   } catch (const ConfigError& e) {
     std::cerr << "error: invalid experiment spec: " << e.what() << "\n";
-    return 2;
+    return std::nullopt;
   }
-  // Validate every cell before running any.
-  for (const auto& c : cells) {
+  std::vector<std::string> problems;
+  for (const auto& c : m.cells) {
     try {
-      resolved.push_back(kind->resolve(c.config, c.path, registry));
+      m.resolved.push_back(m.kind->resolve(c.config, c.path, registry));
+      m.costs.push_back(m.kind->expected_cost(m.resolved.back()));
     } catch (const ConfigError& e) {
       problems.push_back(std::string(e.what()) + "  [cell " + c.label + "]");
     }
   }
-  if (!problems.empty()) {
-    for (const auto& p : problems) std::cerr << "error: " << p << "\n";
-    std::cerr << "error: " << problems.size() << " invalid cell(s); nothing was run\n";
-    return 2;
-  }
-  const std::string name = spec["name"].get<std::string>();
-  const fs::path out(options.out_dir);
-  std::unique_ptr<FolderLock> lock;
-  try {
-    lock = std::make_unique<FolderLock>(options.out_dir, options.command_line);
-  } catch (const FolderBusy& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "error: cannot use the output folder: " << e.what() << "\n";
-    return 2;
-  }
-  const json prov = provenance(options.command_line);
-  const fs::path table_file = out / (name + ".json");
-  std::vector<json> rows(cells.size());
-  std::vector<bool> done(cells.size(), false);
-  std::mutex io_mutex;
-  std::size_t computed = 0, finished = 0, cached = 0;
-  double computed_seconds = 0.0, first_seconds = 0.0;  // the first computed cell may carry shared work
-  std::atomic<bool> stop{false};
-  std::string write_error;
-
-  auto finished_rows = [&]() {
-    std::vector<json> v;
-    for (std::size_t i = 0; i < cells.size(); ++i)
-      if (done[i]) v.push_back(rows[i]);
-    return v;
-  };
-  // The table holds nothing of "now": its provenance is derived from its rows.
-  auto write_table = [&](bool complete) {
-    const std::vector<json> v = finished_rows();
-    json table = {{"experiment", name},
-                  {"kind", kind->name()},
-                  {"description", spec.value("description", "")},
-                  {"spec_file", options.spec_file},
-                  {"spec", spec},
-                  {"provenance", table_provenance(v)},
-                  {"complete", complete},
-                  {"rows", v}};
-    write_file_atomically(table_file.string(), table.dump(2) + "\n");
-  };
-
-  std::atomic<std::size_t> next{0};
-  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(cells.size())));
-  const int threads_per_job = std::max(1, omp_get_max_threads() / jobs);
-  const std::string tag = "[" + name + "] ";
-  auto worker = [&]() {
-    omp_set_num_threads(threads_per_job);
-    for (std::size_t i = next++; i < cells.size() && !stop; i = next++) {
-      const auto& c = cells[i];
-      const fs::path cell_file = out / "cells" / (c.id + ".json");
-      if (!options.force && fs::exists(cell_file)) {
-        try {
-          json prev = read_json_file(cell_file.string());
-          if (prev.value("status", "") != "error" && prev.value("params", json()) == resolved[i]) {
-            std::lock_guard<std::mutex> guard(io_mutex);
-            rows[i] = prev;
-            done[i] = true;
-            ++cached;
-            ++finished;
-            std::cerr << tag << "cell " << (i + 1) << "/" << cells.size() << " (" << c.label
-                      << ") already done; skipped (use --force to re-run)\n";
-            continue;
-          }
-        } catch (const std::exception&) {
-          // An unreadable previous result is simply re-run.
-        }
-      }
-      {
-        std::lock_guard<std::mutex> guard(io_mutex);
-        std::cerr << tag << "cell " << (i + 1) << "/" << cells.size() << " (" << c.label << ") started\n";
-      }
-      const auto t0 = std::chrono::steady_clock::now();
-      json row;
-      try {
-        row = kind->run(resolved[i], registry, [&](const std::string& line) {
-          std::lock_guard<std::mutex> guard(io_mutex);
-          std::cerr << tag << "(" << c.label << ") " << line << "\n";
-        });
-      } catch (const std::exception& e) {
-        row = {{"status", "error"}, {"error", e.what()}, {"errors", json::object()}, {"cost", json::object()}};
-      }
-      const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      row["id"] = c.id;
-      row["label"] = c.label;
-      row["params"] = resolved[i];
-      row["cell_wall_seconds"] = secs;
-      row["provenance"] = prov;
-      std::lock_guard<std::mutex> guard(io_mutex);
-      try {
-        write_file_atomically(cell_file.string(), row.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
-        rows[i] = row;
-        done[i] = true;
-        if (computed++ == 0) first_seconds = secs;
-        else computed_seconds += secs;
-        ++finished;
-        write_table(false);
-      } catch (const std::exception& e) {
-        write_error = e.what();
-        stop = true;
-        break;
-      }
-      // One line per cell with an estimate of the time left (from the cells computed so far).
-      const std::size_t left = cells.size() - finished;
-      std::cerr << tag << "cell " << (i + 1) << "/" << cells.size() << " (" << c.label << ") "
-                << row.value("status", "?") << " in " << format_seconds(secs) << "; " << finished << "/"
-                << cells.size() << " done";
-      // Time left: the mean of the computed cells times the cells left; the first computed cell is left out of
-      // the mean once there are others (it may have done work the others reuse, e.g. a direct SPH reference).
-      const double mean = computed > 1 ? computed_seconds / static_cast<double>(computed - 1) : first_seconds;
-      if (left > 0) std::cerr << ", about " << format_seconds(mean * static_cast<double>(left) / jobs) << " left";
-      std::cerr << (row.contains("error") ? ": " + row["error"].get<std::string>() : "") << "\n";
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
-  if (stop) {
-    std::cerr << "error: " << write_error << "\nerror: the run stopped; " << computed
-              << " cell(s) computed in this run are kept in " << (out / "cells").string() << "\n";
-    return 1;
-  }
-  bool written = false;
-  try {
-    if (computed == 0 && table_unchanged(table_file, spec, finished_rows())) {
-      std::cerr << tag << "nothing computed; " << table_file.string() << " left as it is\n";
-    } else {
-      write_table(true);
-      written = true;
-    }
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\nerror: the table was not written; the cells are kept in "
-              << (out / "cells").string() << "\n";
-    return 1;
-  }
-  std::size_t failed = 0;
-  for (const auto& r : rows) failed += r.value("status", "") == "error";
-  std::cerr << tag << (written ? "wrote " : "kept ") << table_file.string() << " (" << cells.size() << " cells: " << computed
-            << " computed, " << cached << " cached, " << failed << " failed)\n";
-  return failed == 0 ? 0 : 1;
+  if (problems.empty()) return m;
+  for (const auto& p : problems) std::cerr << "error: " << p << "\n";
+  std::cerr << "error: " << problems.size() << " invalid cell(s); nothing was run\n";
+  return std::nullopt;
 }
 
 }  // namespace closurelab

@@ -1,12 +1,16 @@
 #pragma once
 // The experiment runner (DESIGN.md §3): expands an experiment matrix (base + cartesian axes + explicit
 // cells), validates every cell before running any, runs them (resuming finished cells), and writes one
-// JSON row per cell (DIR/cells/<id>.json) and the table DIR/<name>.json with provenance.
+// JSON row per cell (DIR/cells/<id>.json) and the table DIR/<name>.json with provenance. The cells run on
+// threads of this process and, under mpirun, on the other ranks (cell_scheduler.hpp); a shard of the matrix
+// runs alone and `closurelab merge` writes the table (shards.hpp).
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/base/params.hpp"
 #include "core/base/registry.hpp"
+#include "experiments/runner/shards.hpp"
 
 namespace closurelab {
 
@@ -23,15 +27,33 @@ std::vector<MatrixCell> expand_matrix(const json& spec);
 // Sets `value` at a dotted path ("scene.n_y") inside `target`, creating objects on the way.
 void set_dotted(json& target, const std::string& dotted, const json& value, const std::string& path);
 
+class ExperimentKind;
+
+// A matrix whose every cell is valid: the cells, their kind, each cell resolved (defaults filled in) and its
+// expected cost (ExperimentKind::expected_cost).
+struct ValidMatrix {
+  std::vector<MatrixCell> cells;
+  const ExperimentKind* kind = nullptr;
+  std::vector<json> resolved;
+  std::vector<double> costs;
+};
+
+// Expands and validates every cell; prints each problem (with its JSON path and cell) to stderr and returns
+// nothing if there is any.
+std::optional<ValidMatrix> validate_matrix(const json& spec, const Registry& registry);
+
 struct RunOptions {
   std::string out_dir = "results";
   int jobs = 1;
   bool force = false;  // re-run finished cells
   std::string command_line;
   std::string spec_file;
+  Shard shard;  // --shard i/N; not sharded by default
 };
 
-// Runs the whole matrix; returns the process exit code (0: all cells ok or recorded, 2: invalid spec).
+// Runs the whole matrix (or one shard); returns the process exit code (0: all cells ok or recorded, 1: a cell
+// failed or a write failed, 2: invalid spec or options, or the folder is in use). Under mpirun every rank calls
+// it: rank 0 validates, hands out the cells and writes; the other ranks compute what they are handed.
 int run_experiment(const json& spec, const Registry& registry, const RunOptions& options);
 
 }  // namespace closurelab

@@ -24,6 +24,7 @@ QUESTIONS = {
     "speed_vs_error/poiseuille_uniform": "Which closure is fastest for its error (uniform-force channel)?",
     "speed_vs_error/poiseuille_periodic": "Which closure is fastest for its error (periodic-force channel)?",
     "speed_vs_error/kolmogorov": "Which closure is fastest for its error (wall-free kolmogorov flow)?",
+    "cellular/direct": "Does the direct SPH of the cellular flow reach the exact steady amplitude g/(2k^2 nu), and at what order?",
     "two_phase/direct": "Does the direct SPH of the layered two-phase flow reach the analytic piecewise parabolas?",
     "two_phase/two_phase": "Section 7: how close is the reduced model of the two-phase flow to the direct SPH?",
     "two_phase/two_phase_eta": "Section 7: does the two-phase reduced model's error fall as eta' shrinks?",
@@ -66,6 +67,10 @@ def headline(t):
     if kind == "direct_sph_validation":
         e = [get(r, "errors", "particles_vs_analytic", "all", "max_rel") for r in rows]
         e = [x for x in e if x is not None]
+        amp = [get(r, "errors", "amplitude", "relative_difference") for r in rows]
+        amp = [abs(x) for x in amp if x is not None]
+        if amp:  # cellular scenes: the fitted amplitude against the exact one
+            return f"steady amplitude vs exact from {pct(min(amp))} to {pct(max(amp))}"
         if t["experiment"] == "appendix_b":
             d = [get(r, "errors", "convective_xx_vs_appendix_b_max_abs") for r in rows]
             d = [x for x in d if x is not None]

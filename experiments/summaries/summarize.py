@@ -16,6 +16,7 @@ Views (the summarize_*.py files beside this one, kept importable and runnable on
   quadrature_convergence                           summarize_appendix_c     table  -> summary.md
   direct_sph_validation  experiment appendix_b     summarize_appendix_b     table  -> summary.md
                          layered-two-phase scene   summarize_two_phase      table  -> summary.md
+                         cellular scene            summarize_cellular       table  -> summary.md
                          otherwise                 summarize_validation     table  -> summary.md
   reduced_model          experiment pareto_*       summarize_pareto         table  -> summary.md, summary.png
                          experiment error_budget_* summarize_error_budget  table  -> summary.md, summary.png
@@ -44,6 +45,8 @@ def view_of(table):
         scenes = {r.get("params", {}).get("scene", {}).get("name") for r in table.get("rows", [])}
         if "layered-two-phase" in scenes:
             return "summarize_two_phase", "stdout", "summary.md"
+        if "cellular" in scenes:
+            return "summarize_cellular", "stdout", "summary.md"
         return "summarize_validation", "stdout", "summary.md"
     if kind == "reduced_model":
         if name.startswith("pareto_"):

@@ -17,7 +17,7 @@ bool ends_with_newline(const std::string& s) { return !s.empty() && s.back() == 
 
 TEST(CliConventions, HelpOfEachCommandPrintsItsUsageAndExitsZero) {
   const auto work = fresh_work_folder("cli_help");
-  for (const std::string cmd : {"run", "deconvolve", "list", "store"}) {
+  for (const std::string cmd : {"run", "merge", "deconvolve", "list", "store"}) {
     const CliOutcome o = run_closurelab(work, cmd + " --help");
     EXPECT_EQ(o.code, 0) << cmd << ": " << o.err;
     EXPECT_NE(o.out.find("usage: closurelab " + cmd), std::string::npos) << cmd << ": " << o.out;
@@ -54,12 +54,15 @@ TEST_P(CliBadInvocation, NamesTheProblemListsTheValidOnesExitTwoNewlineTerminate
 INSTANTIATE_TEST_SUITE_P(
     Invocations, CliBadInvocation,
     ::testing::Values(
-        BadInvocation{"frobnicate", {"'frobnicate'", "list", "run", "deconvolve"}},
+        BadInvocation{"frobnicate", {"'frobnicate'", "list", "run", "merge", "deconvolve"}},
         BadInvocation{"list nonsense", {"'nonsense'", "kernel", "deconvolver", "quadrature", "scene", "experiment"}},
         BadInvocation{"list kernel extra", {"'extra'"}},
-        BadInvocation{"run spec.json --frob", {"'--frob'", "--out", "--jobs", "--force", "--store", "--help"}},
+        BadInvocation{"run spec.json --frob", {"'--frob'", "--out", "--jobs", "--force", "--store", "--shard", "--help"}},
         BadInvocation{"run spec.json --store ''", {"--store"}},
         BadInvocation{"store --frob", {"'--frob'", "--store", "--help"}},
+        BadInvocation{"run spec.json --shard 3", {"--shard", "i/N", "'3'"}},
+        BadInvocation{"merge", {"DIR", "usage: closurelab merge"}},
+        BadInvocation{"merge a b", {"DIR", "usage: closurelab merge"}},
         BadInvocation{"run spec.json --jobs 2x", {"--jobs", "'2x'"}},
         BadInvocation{"run spec.json --out ''", {"--out"}},
         BadInvocation{"run", {"SPEC.json"}},

@@ -1,0 +1,204 @@
+// `closurelab run`: rank 0 checks the folder, validates the matrix, takes the lock, hands out the cells
+// (cell_scheduler.hpp) and writes each finished row at once, then the table (results_table.hpp) or, for a shard,
+// its note (shards.hpp); the other ranks of an MPI run compute what they are handed.
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "core/base/errors.hpp"
+#include "experiments/kinds/experiment_kind.hpp"
+#include "experiments/runner/cell_scheduler.hpp"
+#include "experiments/runner/out_folder.hpp"
+#include "experiments/runner/provenance.hpp"
+#include "experiments/runner/rank_group.hpp"
+#include "experiments/runner/results_table.hpp"
+#include "experiments/runner/runner.hpp"
+
+namespace closurelab {
+
+namespace {
+
+std::string format_seconds(double s) {
+  char buf[32];
+  if (s < 90)
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 5400)
+    std::snprintf(buf, sizeof buf, "%.1f min", s / 60);
+  else
+    std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
+  return buf;
+}
+
+// Rank 0's part of a run, from the folder check to the table; the other ranks are served (and finally released)
+// by schedule_cells. Every early return releases them with an empty schedule first.
+int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& options, const RankGroup& group) {
+  namespace fs = std::filesystem;
+  const json provenance_here = provenance(options.command_line);
+  auto give_up = [&](int code) {
+    schedule_cells({}, 0, 1, registry, provenance_here, group, [](const CellTask&, const json&) { return true; });
+    return code;
+  };
+  try {
+    check_output_folder(options.out_dir);  // before anything is validated or computed; writes nothing
+    if (options.jobs > 1 && group.size() > 1)
+      throw ConfigError("--jobs",
+                        "with mpirun each rank computes one cell at a time: give more ranks instead of --jobs " +
+                            std::to_string(options.jobs));
+  } catch (const ConfigError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return give_up(2);
+  }
+  const auto matrix = validate_matrix(spec, registry);  // every cell, before any runs
+  if (!matrix) return give_up(2);
+  const auto& cells = matrix->cells;
+  const std::string name = spec["name"].get<std::string>();
+  const Shard& shard = options.shard;
+  std::unique_ptr<FolderLock> lock;
+  try {
+    lock = shard.active() ? std::make_unique<FolderLock>(options.out_dir, options.command_line, shard_lock_name(shard))
+                          : std::make_unique<FolderLock>(options.out_dir, options.command_line);
+  } catch (const FolderBusy& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return give_up(2);
+  } catch (const std::exception& e) {
+    std::cerr << "error: cannot use the output folder: " << e.what() << "\n";
+    return give_up(2);
+  }
+  // This run's cells (a shard's share, or all), the finished ones taken from DIR/cells.
+  const std::string tag = "[" + name + "] ";
+  const std::vector<int> shard_of =
+      shard.active() ? assign_shards(matrix->costs, shard.count) : std::vector<int>(cells.size(), 0);
+  std::vector<std::size_t> mine, to_compute;
+  std::vector<std::string> mine_ids;
+  std::vector<json> rows(cells.size());
+  std::vector<bool> done(cells.size(), false);
+  std::size_t computed = 0, finished = 0, cached = 0;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (shard_of[i] != shard.index) continue;
+    mine.push_back(i);
+    mine_ids.push_back(cells[i].id);
+    auto row = options.force ? std::nullopt : stored_row(cell_file(options.out_dir, cells[i].id), matrix->resolved[i]);
+    if (row && row->value("status", "") != "error") {
+      rows[i] = std::move(*row);
+      done[i] = true;
+      ++cached;
+      ++finished;
+      std::cerr << tag << "cell " << (i + 1) << "/" << cells.size() << " (" << cells[i].label
+                << ") already done; skipped (use --force to re-run)\n";
+    } else {
+      to_compute.push_back(i);
+    }
+  }
+  const fs::path table_file = fs::path(options.out_dir) / (name + ".json");
+  auto finished_rows = [&]() {
+    std::vector<json> v;
+    for (std::size_t i : mine)
+      if (done[i]) v.push_back(rows[i]);
+    return v;
+  };
+  try {
+    if (shard.active()) write_shard_note(options.out_dir, shard, spec, options.spec_file, mine_ids, false);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return give_up(1);
+  }
+
+  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(to_compute.size())));
+  const int threads_per_job = std::max(1, omp_get_max_threads() / jobs);
+  const int slots = jobs * group.size();
+  std::vector<CellTask> tasks;
+  for (std::size_t i : hand_out_order(to_compute, matrix->costs, slots))
+    tasks.push_back({{"experiment", name},
+                     {"kind", matrix->kind->name()},
+                     {"index", i},
+                     {"total", cells.size()},
+                     {"id", cells[i].id},
+                     {"label", cells[i].label},
+                     {"resolved", matrix->resolved[i]}});
+  double computed_seconds = 0.0, first_seconds = 0.0;  // the first computed cell may carry shared work
+  std::string write_error;
+  schedule_cells(
+      tasks, jobs, threads_per_job, registry, provenance_here, group, [&](const CellTask& t, const json& row) {
+        const std::size_t i = t.at("index").get<std::size_t>();
+        const double secs = row.at("cell_wall_seconds").get<double>();
+        try {
+          write_row(cell_file(options.out_dir, cells[i].id), row);  // at once: a killed run resumes from here
+          rows[i] = row;
+          done[i] = true;
+          if (computed++ == 0)
+            first_seconds = secs;
+          else
+            computed_seconds += secs;
+          ++finished;
+          if (!shard.active())
+            write_table(table_file, make_table(spec, options.spec_file, finished_rows(), false), true);
+        } catch (const std::exception& e) {
+          write_error = e.what();
+          return false;
+        }
+        // One line per cell with an estimate of the time left (from the cells computed so far): the mean of the
+        // computed cells times the cells left over the cells computed at once; the first computed cell is left out of
+        // the mean once there are others (it may have done work the others reuse, e.g. a direct SPH reference).
+        const std::size_t left = mine.size() - finished;
+        std::string line = tag + "cell " + std::to_string(i + 1) + "/" + std::to_string(cells.size()) + " (" +
+                           cells[i].label + ") " + row.value("status", "?") + " in " + format_seconds(secs) + "; " +
+                           std::to_string(finished) + "/" + std::to_string(mine.size()) + " done";
+        const double mean = computed > 1 ? computed_seconds / static_cast<double>(computed - 1) : first_seconds;
+        if (left > 0) line += ", about " + format_seconds(mean * static_cast<double>(left) / slots) + " left";
+        if (row.contains("error") && row["error"].is_string()) line += ": " + row["error"].get<std::string>();
+        log_line(line);
+        return true;
+      });
+  if (!write_error.empty()) {
+    std::cerr << "error: " << write_error << "\nerror: the run stopped; " << computed
+              << " cell(s) computed in this run are kept in " << (fs::path(options.out_dir) / "cells").string() << "\n";
+    return 1;
+  }
+  std::size_t failed = 0;
+  for (std::size_t i : mine) failed += rows[i].value("status", "") == "error";
+  const std::string counts = std::to_string(mine.size()) + " cells: " + std::to_string(computed) + " computed, " +
+                             std::to_string(cached) + " cached, " + std::to_string(failed) + " failed";
+  try {
+    if (shard.active()) {
+      write_shard_note(options.out_dir, shard, spec, options.spec_file, mine_ids, true);
+      std::cerr << tag << "shard " << shard.text() << " done (" << counts
+                << "); when every shard is done: closurelab merge " << options.out_dir << "\n";
+    } else {
+      const bool written =
+          write_table(table_file, make_table(spec, options.spec_file, finished_rows(), true), computed > 0);
+      if (!written) std::cerr << tag << "nothing computed; " << table_file.string() << " left as it is\n";
+      std::cerr << tag << (written ? "wrote " : "kept ") << table_file.string() << " (" << counts << ")\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\nerror: the " << (shard.active() ? "shard note" : "table")
+              << " was not written; the cells are kept in " << (fs::path(options.out_dir) / "cells").string() << "\n";
+    return 1;
+  }
+  return failed == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int run_experiment(const json& spec, const Registry& registry, const RunOptions& options) {
+  const RankGroup group;  // MPI_Init under mpirun; MPI_Finalize when the run is over
+  if (group.rank() == 0) {
+    try {
+      return run_as_rank0(spec, registry, options, group);
+    } catch (const std::exception& e) {
+      // Unexpected: the other ranks may still wait for cells; end them rather than hang in MPI_Finalize.
+      if (group.size() > 1) {
+        std::cerr << "error: " << e.what() << "\n";
+        group.abort(1);
+      }
+      throw;
+    }
+  }
+  work_on_cells(registry, provenance(options.command_line), group);
+  return 0;
+}
+
+}  // namespace closurelab

@@ -21,6 +21,56 @@ inline double wrap(double d, double len, double inv_len) {
   return d - len * k;
 }
 
+// The density pass over pairs [begin, end) (see SphEngine::density_pairs), on raw arrays that do not alias, so
+// that nothing is reloaded per pair.
+template <SmoothingKernel::Type T>
+void density_loop(const SmoothingKernel kernel, const PeriodicBox box, const double* __restrict x,
+                  const double* __restrict y, const std::int32_t* __restrict pi, const std::int32_t* __restrict pj,
+                  std::size_t begin, std::size_t end, double* __restrict qx, double* __restrict qy,
+                  double* __restrict dw_over_r, double* __restrict n) {
+  const double ilx = 1.0 / box.lx, ily = 1.0 / box.ly;
+  for (std::size_t p = begin; p < end; ++p) {
+    const int i = pi[p], j = pj[p];
+    double dx = x[i] - x[j], dy = y[i] - y[j];
+    if (box.periodic_x) dx = wrap(dx, box.lx, ilx);
+    if (box.periodic_y) dy = wrap(dy, box.ly, ily);
+    qx[p] = dx;
+    qy[p] = dy;
+    double w, f;
+    kernel.w_and_dw_over_r<T>(dx * dx + dy * dy, w, f);
+    dw_over_r[p] = f;
+    n[i] += w;
+    n[j] += w;
+  }
+}
+
+// Per-particle inputs of the force pass.
+struct ForceInputs {
+  const double *p_over_n2, *inv_n, *mu, *vx, *vy;
+  const int* phase;
+  PairViscosityMean mean;
+  double unlike;  // added to P_i/n_i² + P_j/n_j² of an unlike pair: twice the excess of (7.1)
+};
+
+// (5.1) for the pairs [begin, end) whose relative velocity is v_i − v_j, added to the force on i and subtracted
+// from the force on j (interleaved x, y per particle in f).
+inline void force_pair(const ForceInputs& in, int i, int j, double F, double qx, double qy, double* __restrict f) {
+  const double p_sum = in.p_over_n2[i] + in.p_over_n2[j] + (in.phase[i] != in.phase[j] ? in.unlike : 0.0);
+  const double visc = pair_viscosity(in.mu[i], in.mu[j], in.mean) * (in.inv_n[i] * in.inv_n[j]);
+  double fx, fy;
+  sph_pair_force(p_sum, visc, F, qx, qy, in.vx[i] - in.vx[j], in.vy[i] - in.vy[j], fx, fy);
+  f[2 * i] += fx;
+  f[2 * i + 1] += fy;
+  f[2 * j] -= fx;
+  f[2 * j + 1] -= fy;
+}
+
+void force_loop(const ForceInputs in, const std::int32_t* __restrict pi, const std::int32_t* __restrict pj,
+                const double* __restrict F, const double* __restrict qx, const double* __restrict qy, std::size_t begin,
+                std::size_t end, double* __restrict f) {
+  for (std::size_t p = begin; p < end; ++p) force_pair(in, pi[p], pj[p], F[p], qx[p], qy[p], f);
+}
+
 }  // namespace
 
 SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
@@ -107,26 +157,8 @@ void SphEngine::rebuild_pairs_if_needed() {
 // densities in `buf`. Pairs of the list beyond the support give w = w'/r = 0.
 template <SmoothingKernel::Type T>
 void SphEngine::density_pairs(std::vector<double>& buf, std::size_t begin, std::size_t end) {
-  const double* x = ps_.x.data();
-  const double* y = ps_.y.data();
-  const std::int32_t* pi = pairs_.i.data();
-  const std::int32_t* pj = pairs_.j.data();
-  const bool px = scene_.box.periodic_x, py = scene_.box.periodic_y;
-  const double lx = scene_.box.lx, ly = scene_.box.ly, ilx = inv_lx_, ily = inv_ly_;
-  double* b = buf.data();
-  for (std::size_t p = begin; p < end; ++p) {
-    const int i = pi[p], j = pj[p];
-    double dx = x[i] - x[j], dy = y[i] - y[j];
-    if (px) dx = wrap(dx, lx, ilx);
-    if (py) dy = wrap(dy, ly, ily);
-    pair_dx_[p] = dx;
-    pair_dy_[p] = dy;
-    double wv, f;
-    w_.w_and_dw_over_r<T>(dx * dx + dy * dy, wv, f);
-    pair_f_[p] = f;
-    b[i] += wv;
-    b[j] += wv;
-  }
+  density_loop<T>(w_, scene_.box, ps_.x.data(), ps_.y.data(), pairs_.i.data(), pairs_.j.data(), begin, end,
+                  pair_dx_.data(), pair_dy_.data(), pair_f_.data(), buf.data());
 }
 
 void SphEngine::compute_density() {
@@ -184,34 +216,29 @@ Vec2 SphEngine::relative_velocity(std::int32_t a, std::int32_t b) const {
   return {sign * beta * ps_.vx[f], sign * beta * ps_.vy[f]};
 }
 
-// Pairs [begin, end): (5.1) added to the force on i and subtracted from the force on j, interleaved (x, y)
-// per particle in `buf`.
 void SphEngine::force_pairs(std::vector<double>& buf, std::size_t begin, std::size_t end) const {
-  const bool ghost = scene_.wall_model == WallModel::GhostVelocity;
-  const PairViscosityMean mean = scene_.pair_viscosity_mean;
-  const double unlike = 2.0 * unlike_excess_;
-  const std::int32_t* pi = pairs_.i.data();
-  const std::int32_t* pj = pairs_.j.data();
+  const ForceInputs in{p_over_n2_.data(), inv_n_.data(),    mu_.data(),
+                       ps_.vx.data(),     ps_.vy.data(),    ps_.phase.data(),
+                       scene_.pair_viscosity_mean, 2.0 * unlike_excess_};
+  const std::int32_t *pi = pairs_.i.data(), *pj = pairs_.j.data();
+  if (scene_.wall_model != WallModel::GhostVelocity) {
+    force_loop(in, pi, pj, pair_f_.data(), pair_dx_.data(), pair_dy_.data(), begin, end, buf.data());
+    return;
+  }
+  // Ghost walls: fluid–wall pairs take their ghost velocity (the list's wall pairs come in runs, cell order).
   const std::uint8_t* fixed = ps_.fixed.data();
-  const int* phase = ps_.phase.data();
-  const double *vx = ps_.vx.data(), *vy = ps_.vy.data();
-  double* b = buf.data();
+  double* f = buf.data();
   for (std::size_t p = begin; p < end; ++p) {
     const int i = pi[p], j = pj[p];
-    double fx, fy;
-    if (ghost && fixed[i] != fixed[j]) {  // the list's wall pairs come in runs (cell order): predictable
-      if (pair_f_[p] == 0.0) continue;
-      const Vec2 f = pair_force(p, p_over_n2_[i], p_over_n2_[j]);
-      fx = f.x(), fy = f.y();
-    } else {
-      const double p_sum = p_over_n2_[i] + p_over_n2_[j] + (phase[i] != phase[j] ? unlike : 0.0);
-      const double visc = pair_viscosity(mu_[i], mu_[j], mean) * (inv_n_[i] * inv_n_[j]);
-      sph_pair_force(p_sum, visc, pair_f_[p], pair_dx_[p], pair_dy_[p], vx[i] - vx[j], vy[i] - vy[j], fx, fy);
+    if (fixed[i] == fixed[j]) {
+      force_pair(in, i, j, pair_f_[p], pair_dx_[p], pair_dy_[p], f);
+    } else if (pair_f_[p] != 0.0) {
+      const Vec2 g = pair_force(p, p_over_n2_[i], p_over_n2_[j]);
+      f[2 * i] += g.x();
+      f[2 * i + 1] += g.y();
+      f[2 * j] -= g.x();
+      f[2 * j + 1] -= g.y();
     }
-    b[2 * i] += fx;
-    b[2 * i + 1] += fy;
-    b[2 * j] -= fx;
-    b[2 * j + 1] -= fy;
   }
 }
 

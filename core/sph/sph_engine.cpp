@@ -1,3 +1,5 @@
+// The direct SPH engine. Over 300 lines: the two pair passes, their per-particle steps and the list upkeep share
+// the engine's state and are kept together.
 #include "core/sph/sph_engine.hpp"
 
 #include <omp.h>
@@ -44,31 +46,39 @@ void density_loop(const SmoothingKernel kernel, const PeriodicBox box, const dou
   }
 }
 
-// Per-particle inputs of the force pass.
+// Inputs of the force pass.
 struct ForceInputs {
-  const double *p_over_n2, *inv_n, *mu, *vx, *vy;
+  const SphPairInput* s;
+  const double* mu;
   const int* phase;
   PairViscosityMean mean;
-  double unlike;  // added to P_i/n_i² + P_j/n_j² of an unlike pair: twice the excess of (7.1)
+  double unlike;     // added to P_i/n_i² + P_j/n_j² of an unlike pair: twice the excess of (7.1)
+  double mu_single;  // μ_ij of a one-phase scene (2μ, as pair_viscosity gives for like particles)
 };
 
-// (5.1) for the pairs [begin, end) whose relative velocity is v_i − v_j, added to the force on i and subtracted
-// from the force on j (interleaved x, y per particle in f).
+// (5.1) for pair (i, j) with relative velocity v_i − v_j, added to the force on i and subtracted from the force
+// on j (interleaved x, y per particle in f). OnePhase: every pair is a like pair.
+template <bool OnePhase>
 inline void force_pair(const ForceInputs& in, int i, int j, double F, double qx, double qy, double* __restrict f) {
-  const double p_sum = in.p_over_n2[i] + in.p_over_n2[j] + (in.phase[i] != in.phase[j] ? in.unlike : 0.0);
-  const double visc = pair_viscosity(in.mu[i], in.mu[j], in.mean) * (in.inv_n[i] * in.inv_n[j]);
+  const SphPairInput &a = in.s[i], &b = in.s[j];
+  double p_sum = a.p_over_n2 + b.p_over_n2, mu_ij = in.mu_single;
+  if constexpr (!OnePhase) {
+    p_sum += in.phase[i] != in.phase[j] ? in.unlike : 0.0;
+    mu_ij = pair_viscosity(in.mu[i], in.mu[j], in.mean);
+  }
   double fx, fy;
-  sph_pair_force(p_sum, visc, F, qx, qy, in.vx[i] - in.vx[j], in.vy[i] - in.vy[j], fx, fy);
+  sph_pair_force(p_sum, mu_ij * (a.inv_n * b.inv_n), F, qx, qy, a.vx - b.vx, a.vy - b.vy, fx, fy);
   f[2 * i] += fx;
   f[2 * i + 1] += fy;
   f[2 * j] -= fx;
   f[2 * j + 1] -= fy;
 }
 
+template <bool OnePhase>
 void force_loop(const ForceInputs in, const std::int32_t* __restrict pi, const std::int32_t* __restrict pj,
                 const double* __restrict F, const double* __restrict qx, const double* __restrict qy, std::size_t begin,
                 std::size_t end, double* __restrict f) {
-  for (std::size_t p = begin; p < end; ++p) force_pair(in, pi[p], pj[p], F[p], qx[p], qy[p], f);
+  for (std::size_t p = begin; p < end; ++p) force_pair<OnePhase>(in, pi[p], pj[p], F[p], qx[p], qy[p], f);
 }
 
 }  // namespace
@@ -114,8 +124,8 @@ SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
   }
   unlike_excess_ = scene.unlike_pair_excess_over_n2();
   thread_buf_.assign(omp_get_max_threads(), std::vector<double>(2 * n, 0.0));
-  p_over_n2_.assign(n, 0.0);
-  inv_n_.assign(n, 0.0);
+  pair_input_.assign(n, SphPairInput{0.0, 0.0, 0.0, 0.0});
+  for (std::size_t a = 1; a < n; ++a) one_phase_ = one_phase_ && ps_.phase[a] == ps_.phase[0];
   inv_lx_ = 1.0 / scene.box.lx;
   inv_ly_ = 1.0 / scene.box.ly;
   // The ghost-velocity wall multiplies the viscous coupling of a fluid–wall pair by β <= 1 + d_wall/d_fluid;
@@ -217,12 +227,15 @@ Vec2 SphEngine::relative_velocity(std::int32_t a, std::int32_t b) const {
 }
 
 void SphEngine::force_pairs(std::vector<double>& buf, std::size_t begin, std::size_t end) const {
-  const ForceInputs in{p_over_n2_.data(), inv_n_.data(),    mu_.data(),
-                       ps_.vx.data(),     ps_.vy.data(),    ps_.phase.data(),
-                       scene_.pair_viscosity_mean, 2.0 * unlike_excess_};
+  const ForceInputs in{pair_input_.data(),         mu_.data(),
+                       ps_.phase.data(),           scene_.pair_viscosity_mean,
+                       2.0 * unlike_excess_,       mu_.empty() ? 0.0 : mu_[0] + mu_[0]};
   const std::int32_t *pi = pairs_.i.data(), *pj = pairs_.j.data();
   if (scene_.wall_model != WallModel::GhostVelocity) {
-    force_loop(in, pi, pj, pair_f_.data(), pair_dx_.data(), pair_dy_.data(), begin, end, buf.data());
+    if (one_phase_)
+      force_loop<true>(in, pi, pj, pair_f_.data(), pair_dx_.data(), pair_dy_.data(), begin, end, buf.data());
+    else
+      force_loop<false>(in, pi, pj, pair_f_.data(), pair_dx_.data(), pair_dy_.data(), begin, end, buf.data());
     return;
   }
   // Ghost walls: fluid–wall pairs take their ghost velocity (the list's wall pairs come in runs, cell order).
@@ -231,9 +244,9 @@ void SphEngine::force_pairs(std::vector<double>& buf, std::size_t begin, std::si
   for (std::size_t p = begin; p < end; ++p) {
     const int i = pi[p], j = pj[p];
     if (fixed[i] == fixed[j]) {
-      force_pair(in, i, j, pair_f_[p], pair_dx_[p], pair_dy_[p], f);
+      force_pair<false>(in, i, j, pair_f_[p], pair_dx_[p], pair_dy_[p], f);
     } else if (pair_f_[p] != 0.0) {
-      const Vec2 g = pair_force(p, p_over_n2_[i], p_over_n2_[j]);
+      const Vec2 g = pair_force(p, pair_input_[i].p_over_n2, pair_input_[j].p_over_n2);
       f[2 * i] += g.x();
       f[2 * i + 1] += g.y();
       f[2 * j] -= g.x();
@@ -253,8 +266,7 @@ void SphEngine::compute_accelerations() {
 #pragma omp for schedule(static)
     for (std::size_t k = 0; k < na; ++k) {
       const int a = active_[k];
-      p_over_n2_[a] = pressure(a) / (n_[a] * n_[a]);
-      inv_n_[a] = 1.0 / n_[a];
+      pair_input_[a] = {pressure(a) / (n_[a] * n_[a]), 1.0 / n_[a], ps_.vx[a], ps_.vy[a]};
     }
     force_pairs(buf, np * t / nt, np * (t + 1) / nt);
 #pragma omp barrier

@@ -26,6 +26,11 @@ struct PairForce {
   Vec2 d, f;
 };
 
+// What the force pass reads of a particle, in one place (one cache-line half per particle).
+struct SphPairInput {
+  double p_over_n2, inv_n, vx, vy;
+};
+
 class SphEngine {
  public:
   SphEngine(const Scene& scene, ParticleSystem& particles);
@@ -73,7 +78,9 @@ class SphEngine {
   std::vector<std::int32_t> active_, moving_;
   std::vector<double> n_static_;  // wall–wall part of wall densities (constant: walls do not move)
   std::vector<double> n_, ax_, ay_, x_built_, y_built_;
-  std::vector<double> mu_, p_over_n2_, inv_n_, vhx_, vhy_;
+  std::vector<double> mu_, vhx_, vhy_;
+  std::vector<SphPairInput> pair_input_;
+  bool one_phase_ = true;  // every particle of one phase: μ_ij = 2μ and no unlike-pair excess
   double inv_lx_ = 0.0, inv_ly_ = 0.0;
   PairList pairs_;
   std::vector<double> pair_dx_, pair_dy_, pair_f_;  // minimum-image q_i − q_j and w'(r)/r per pair

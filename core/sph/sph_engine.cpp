@@ -1,3 +1,5 @@
+// The direct SPH engine. Over 300 lines: the two pair passes, their per-particle steps and the list upkeep share
+// the engine's state and are kept together.
 #include "core/sph/sph_engine.hpp"
 
 #include <omp.h>
@@ -9,6 +11,77 @@
 #include "core/sph/sph_pair_force.hpp"
 
 namespace closurelab {
+
+namespace {
+
+// Minimum image along a periodic axis, d − L rint(d/L), with rint as the round-to-nearest shift by 1.5·2⁵²
+// (exact for |d/L| < 2⁵¹) and 1/L precomputed: no library call in the pair loop. For the listed pairs
+// (|d| far from L/2) it equals PeriodicBox::wrap_dx bitwise.
+inline double wrap(double d, double len, double inv_len) {
+  constexpr double shift = 6755399441055744.0;
+  const double k = (d * inv_len + shift) - shift;
+  return d - len * k;
+}
+
+// The density pass over pairs [begin, end) (see SphEngine::density_pairs), on raw arrays that do not alias, so
+// that nothing is reloaded per pair.
+template <SmoothingKernel::Type T>
+void density_loop(const SmoothingKernel kernel, const PeriodicBox box, const double* __restrict x,
+                  const double* __restrict y, const std::int32_t* __restrict pi, const std::int32_t* __restrict pj,
+                  std::size_t begin, std::size_t end, double* __restrict qx, double* __restrict qy,
+                  double* __restrict dw_over_r, double* __restrict n) {
+  const double ilx = 1.0 / box.lx, ily = 1.0 / box.ly;
+  for (std::size_t p = begin; p < end; ++p) {
+    const int i = pi[p], j = pj[p];
+    double dx = x[i] - x[j], dy = y[i] - y[j];
+    if (box.periodic_x) dx = wrap(dx, box.lx, ilx);
+    if (box.periodic_y) dy = wrap(dy, box.ly, ily);
+    qx[p] = dx;
+    qy[p] = dy;
+    double w, f;
+    kernel.w_and_dw_over_r<T>(dx * dx + dy * dy, w, f);
+    dw_over_r[p] = f;
+    n[i] += w;
+    n[j] += w;
+  }
+}
+
+// Inputs of the force pass.
+struct ForceInputs {
+  const SphPairInput* s;
+  const double* mu;
+  const int* phase;
+  PairViscosityMean mean;
+  double unlike;     // added to P_i/n_i² + P_j/n_j² of an unlike pair: twice the excess of (7.1)
+  double mu_single;  // μ_ij of a one-phase scene (2μ, as pair_viscosity gives for like particles)
+};
+
+// (5.1) for pair (i, j) with relative velocity v_i − v_j, added to the force on i and subtracted from the force
+// on j (interleaved x, y per particle in f). OnePhase: every pair is a like pair.
+template <bool OnePhase>
+inline void force_pair(const ForceInputs& in, int i, int j, double F, double qx, double qy, double* __restrict f) {
+  const SphPairInput &a = in.s[i], &b = in.s[j];
+  double p_sum = a.p_over_n2 + b.p_over_n2, mu_ij = in.mu_single;
+  if constexpr (!OnePhase) {
+    p_sum += in.phase[i] != in.phase[j] ? in.unlike : 0.0;
+    mu_ij = pair_viscosity(in.mu[i], in.mu[j], in.mean);
+  }
+  double fx, fy;
+  sph_pair_force(p_sum, mu_ij * (a.inv_n * b.inv_n), F, qx, qy, a.vx - b.vx, a.vy - b.vy, fx, fy);
+  f[2 * i] += fx;
+  f[2 * i + 1] += fy;
+  f[2 * j] -= fx;
+  f[2 * j + 1] -= fy;
+}
+
+template <bool OnePhase>
+void force_loop(const ForceInputs in, const std::int32_t* __restrict pi, const std::int32_t* __restrict pj,
+                const double* __restrict F, const double* __restrict qx, const double* __restrict qy, std::size_t begin,
+                std::size_t end, double* __restrict f) {
+  for (std::size_t p = begin; p < end; ++p) force_pair<OnePhase>(in, pi[p], pj[p], F[p], qx[p], qy[p], f);
+}
+
+}  // namespace
 
 SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
     : scene_(scene), ps_(particles), w_(scene.smoothing_kernel()) {
@@ -50,7 +123,11 @@ SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
     mu_[a] = scene.phase_viscosity[ph];
   }
   unlike_excess_ = scene.unlike_pair_excess_over_n2();
-  thread_buf_.resize(omp_get_max_threads());
+  thread_buf_.assign(omp_get_max_threads(), std::vector<double>(2 * n, 0.0));
+  pair_input_.assign(n, SphPairInput{0.0, 0.0, 0.0, 0.0});
+  for (std::size_t a = 1; a < n; ++a) one_phase_ = one_phase_ && ps_.phase[a] == ps_.phase[0];
+  inv_lx_ = 1.0 / scene.box.lx;
+  inv_ly_ = 1.0 / scene.box.ly;
   // The ghost-velocity wall multiplies the viscous coupling of a fluid–wall pair by β <= 1 + d_wall/d_fluid;
   // with the wall between lattice rows, d_fluid >= ε'/2 and d_wall < support.
   viscous_stiffening_ = scene.wall_model == WallModel::ghost_velocity
@@ -61,13 +138,16 @@ SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
 void SphEngine::rebuild_pairs_if_needed() {
   if (built_) {
     const double limit2 = 0.25 * skin_ * skin_;
-    bool need = false;
-    for (int a : moving_) {
-      const double dx = scene_.box.wrap_dx(ps_.x[a] - x_built_[a]), dy = scene_.box.wrap_dy(ps_.y[a] - y_built_[a]);
-      if (dx * dx + dy * dy > limit2) {
-        need = true;
-        break;
-      }
+    const std::size_t m = moving_.size();
+    const PeriodicBox& box = scene_.box;
+    int need = 0;
+#pragma omp parallel for num_threads(static_cast<int>(thread_buf_.size())) schedule(static) reduction(| : need)
+    for (std::size_t k = 0; k < m; ++k) {
+      const int a = moving_[k];
+      double dx = ps_.x[a] - x_built_[a], dy = ps_.y[a] - y_built_[a];
+      if (box.periodic_x) dx = wrap(dx, box.lx, inv_lx_);
+      if (box.periodic_y) dy = wrap(dy, box.ly, inv_ly_);
+      need |= dx * dx + dy * dy > limit2 ? 1 : 0;
     }
     if (!need) return;
   }
@@ -83,37 +163,38 @@ void SphEngine::rebuild_pairs_if_needed() {
   ++list_rebuilds_;
 }
 
+// Pairs [begin, end) of the list: minimum-image q_i − q_j and w'(r)/r stored per pair, w(r) added to the
+// densities in `buf`. Pairs of the list beyond the support give w = w'/r = 0.
+template <SmoothingKernel::Type T>
+void SphEngine::density_pairs(std::vector<double>& buf, std::size_t begin, std::size_t end) {
+  density_loop<T>(w_, scene_.box, ps_.x.data(), ps_.y.data(), pairs_.i.data(), pairs_.j.data(), begin, end,
+                  pair_dx_.data(), pair_dy_.data(), pair_f_.data(), buf.data());
+}
+
 void SphEngine::compute_density() {
   rebuild_pairs_if_needed();
-  const double w0 = w_.w(0.0), rs2 = w_.support() * w_.support();
-  for (int a : active_) n_[a] = ps_.fixed[a] ? n_static_[a] : w0;
-  const std::size_t np = pairs_.size(), n = ps_.size();
-  const int nthreads = static_cast<int>(thread_buf_.size());
-  for (auto& b : thread_buf_) b.assign(n, 0.0);  // all of them: the team may have fewer threads
-#pragma omp parallel num_threads(nthreads)
+  const double w0 = w_.w(0.0);
+  const std::size_t np = pairs_.size(), n = ps_.size(), na = active_.size();
+  const bool quintic = w_.type() == SmoothingKernel::Type::quintic;
+#pragma omp parallel num_threads(static_cast<int>(thread_buf_.size()))
   {
-    auto& buf = thread_buf_[omp_get_thread_num()];
+    const std::size_t t = omp_get_thread_num(), nt = omp_get_num_threads();
+    auto& buf = thread_buf_[t];
+    std::fill(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(n), 0.0);
+    const std::size_t begin = np * t / nt, end = np * (t + 1) / nt;
+    if (quintic)
+      density_pairs<SmoothingKernel::Type::quintic>(buf, begin, end);
+    else
+      density_pairs<SmoothingKernel::Type::wendland_c2>(buf, begin, end);
+#pragma omp barrier
 #pragma omp for schedule(static)
-    for (std::size_t p = 0; p < np; ++p) {
-      const int i = pairs_.i[p], j = pairs_.j[p];
-      const double dx = scene_.box.wrap_dx(ps_.x[i] - ps_.x[j]);
-      const double dy = scene_.box.wrap_dy(ps_.y[i] - ps_.y[j]);
-      const double r2 = dx * dx + dy * dy;
-      pair_dx_[p] = dx;
-      pair_dy_[p] = dy;
-      if (r2 >= rs2) {
-        pair_f_[p] = 0.0;
-        continue;
-      }
-      const double r = std::sqrt(r2);
-      const double wv = w_.w(r);
-      pair_f_[p] = w_.dw(r) / r;
-      buf[i] += wv;
-      buf[j] += wv;
+    for (std::size_t k = 0; k < na; ++k) {
+      const int a = active_[k];
+      double sum = ps_.fixed[a] ? n_static_[a] : w0;
+      for (std::size_t u = 0; u < nt; ++u) sum += thread_buf_[u][a];
+      n_[a] = sum;
     }
   }
-  for (const auto& buf : thread_buf_)
-    for (int a : active_) n_[a] += buf[a];
   pair_evaluations_ += static_cast<std::int64_t>(np);
 }
 
@@ -145,39 +226,64 @@ Vec2 SphEngine::relative_velocity(std::int32_t a, std::int32_t b) const {
   return {sign * beta * ps_.vx[f], sign * beta * ps_.vy[f]};
 }
 
-void SphEngine::compute_accelerations() {
-  compute_density();
-  const std::size_t np = pairs_.size(), n = ps_.size();
-  std::vector<double> p_over_n2(n, 0.0);
-  for (int a : active_) p_over_n2[a] = pressure(a) / (n_[a] * n_[a]);
-  const int nthreads = static_cast<int>(thread_buf_.size());
-  for (auto& b : thread_buf_) b.assign(2 * n, 0.0);
-#pragma omp parallel num_threads(nthreads)
-  {
-    auto& buf = thread_buf_[omp_get_thread_num()];
-#pragma omp for schedule(static)
-    for (std::size_t p = 0; p < np; ++p) {
-      const double F = pair_f_[p];
-      if (F == 0.0) continue;
-      const int i = pairs_.i[p], j = pairs_.j[p];
-      const Vec2 f = pair_force(p, p_over_n2[i], p_over_n2[j]);
-      buf[i] += f.x();
-      buf[n + i] += f.y();
-      buf[j] -= f.x();
-      buf[n + j] -= f.y();
+void SphEngine::force_pairs(std::vector<double>& buf, std::size_t begin, std::size_t end) const {
+  const ForceInputs in{pair_input_.data(),         mu_.data(),
+                       ps_.phase.data(),           scene_.pair_viscosity_mean,
+                       2.0 * unlike_excess_,       mu_.empty() ? 0.0 : mu_[0] + mu_[0]};
+  const std::int32_t *pi = pairs_.i.data(), *pj = pairs_.j.data();
+  if (scene_.wall_model != WallModel::ghost_velocity) {
+    if (one_phase_)
+      force_loop<true>(in, pi, pj, pair_f_.data(), pair_dx_.data(), pair_dy_.data(), begin, end, buf.data());
+    else
+      force_loop<false>(in, pi, pj, pair_f_.data(), pair_dx_.data(), pair_dy_.data(), begin, end, buf.data());
+    return;
+  }
+  // Ghost walls: fluid–wall pairs take their ghost velocity (the list's wall pairs come in runs, cell order).
+  const std::uint8_t* fixed = ps_.fixed.data();
+  double* f = buf.data();
+  for (std::size_t p = begin; p < end; ++p) {
+    const int i = pi[p], j = pj[p];
+    if (fixed[i] == fixed[j]) {
+      force_pair<false>(in, i, j, pair_f_[p], pair_dx_[p], pair_dy_[p], f);
+    } else if (pair_f_[p] != 0.0) {
+      const Vec2 g = pair_force(p, pair_input_[i].p_over_n2, pair_input_[j].p_over_n2);
+      f[2 * i] += g.x();
+      f[2 * i + 1] += g.y();
+      f[2 * j] -= g.x();
+      f[2 * j + 1] -= g.y();
     }
   }
-  for (int a : moving_) {
-    double fx = 0.0, fy = 0.0;
-    for (const auto& buf : thread_buf_) fx += buf[a], fy += buf[n + a];
-    ax_[a] = fx / ps_.mass[a];
-    ay_[a] = fy / ps_.mass[a];
-    if (scene_.body_force) {
-      const Vec2 b = scene_.body_force(ps_.x[a], ps_.y[a]);
-      ax_[a] += b.x();
-      ay_[a] += b.y();
-    } else {
-      ax_[a] += scene_.force_x(ps_.y[a]);
+}
+
+void SphEngine::compute_accelerations() {
+  compute_density();
+  const std::size_t np = pairs_.size(), n = ps_.size(), na = active_.size(), m = moving_.size();
+#pragma omp parallel num_threads(static_cast<int>(thread_buf_.size()))
+  {
+    const std::size_t t = omp_get_thread_num(), nt = omp_get_num_threads();
+    auto& buf = thread_buf_[t];
+    std::fill(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(2 * n), 0.0);
+#pragma omp for schedule(static)
+    for (std::size_t k = 0; k < na; ++k) {
+      const int a = active_[k];
+      pair_input_[a] = {pressure(a) / (n_[a] * n_[a]), 1.0 / n_[a], ps_.vx[a], ps_.vy[a]};
+    }
+    force_pairs(buf, np * t / nt, np * (t + 1) / nt);
+#pragma omp barrier
+#pragma omp for schedule(static)
+    for (std::size_t k = 0; k < m; ++k) {
+      const int a = moving_[k];
+      double fx = 0.0, fy = 0.0;
+      for (std::size_t u = 0; u < nt; ++u) fx += thread_buf_[u][2 * a], fy += thread_buf_[u][2 * a + 1];
+      ax_[a] = fx / ps_.mass[a];
+      ay_[a] = fy / ps_.mass[a];
+      if (scene_.body_force) {
+        const Vec2 g = scene_.body_force(ps_.x[a], ps_.y[a]);
+        ax_[a] += g.x();
+        ay_[a] += g.y();
+      } else {
+        ax_[a] += scene_.force_x(ps_.y[a]);
+      }
     }
   }
 }
@@ -185,25 +291,29 @@ void SphEngine::compute_accelerations() {
 void SphEngine::step(double dt) {
   if (!built_) compute_accelerations();
   const std::size_t m = moving_.size();
-  std::vector<double> vhx(m), vhy(m);
+  vhx_.resize(m);
+  vhy_.resize(m);
+  const PeriodicBox& box = scene_.box;
+#pragma omp parallel for num_threads(static_cast<int>(thread_buf_.size())) schedule(static)
   for (std::size_t k = 0; k < m; ++k) {
     const int a = moving_[k];
-    vhx[k] = ps_.vx[a] + 0.5 * dt * ax_[a];
-    vhy[k] = ps_.vy[a] + 0.5 * dt * ay_[a];
-    double x = ps_.x[a] + dt * vhx[k];
-    if (scene_.box.periodic_x) x -= scene_.box.lx * std::floor(x / scene_.box.lx);
-    double y = ps_.y[a] + dt * vhy[k];
-    if (scene_.box.periodic_y) y -= scene_.box.ly * std::floor(y / scene_.box.ly);
+    vhx_[k] = ps_.vx[a] + 0.5 * dt * ax_[a];
+    vhy_[k] = ps_.vy[a] + 0.5 * dt * ay_[a];
+    double x = ps_.x[a] + dt * vhx_[k];
+    if (box.periodic_x) x -= box.lx * std::floor(x / box.lx);
+    double y = ps_.y[a] + dt * vhy_[k];
+    if (box.periodic_y) y -= box.ly * std::floor(y / box.ly);
     ps_.x[a] = x;
     ps_.y[a] = y;
-    ps_.vx[a] = vhx[k] + 0.5 * dt * ax_[a];  // predicted velocity for the viscous force
-    ps_.vy[a] = vhy[k] + 0.5 * dt * ay_[a];
+    ps_.vx[a] = vhx_[k] + 0.5 * dt * ax_[a];  // predicted velocity for the viscous force
+    ps_.vy[a] = vhy_[k] + 0.5 * dt * ay_[a];
   }
   compute_accelerations();
+#pragma omp parallel for num_threads(static_cast<int>(thread_buf_.size())) schedule(static)
   for (std::size_t k = 0; k < m; ++k) {
     const int a = moving_[k];
-    ps_.vx[a] = vhx[k] + 0.5 * dt * ax_[a];
-    ps_.vy[a] = vhy[k] + 0.5 * dt * ay_[a];
+    ps_.vx[a] = vhx_[k] + 0.5 * dt * ax_[a];
+    ps_.vy[a] = vhy_[k] + 0.5 * dt * ay_[a];
   }
 }
 

@@ -5,6 +5,10 @@
 // ghost-velocity walls, and a body force. Symmetric pair evaluation over a Verlet pair list (cell-list search with a skin),
 // OpenMP over pairs with per-thread accumulators. Only the particles a scene needs are stepped: wall
 // particles farther than the interaction range from every fluid particle take no part.
+// The pair loops are branch-free on the pairs that dominate (fluid–fluid, and every pair under zero-velocity
+// walls): the kernel and w'/r come from r² in one pass (SmoothingKernel::w_and_dw_over_r), list pairs beyond
+// the support contribute zero instead of being skipped, the reciprocals 1/n are taken once per particle; only
+// the fluid–wall pairs of ghost-velocity walls take the general path (their ghost velocity).
 #include <cstdint>
 #include <vector>
 
@@ -20,6 +24,11 @@ namespace closurelab {
 struct PairForce {
   std::int32_t j, k;
   Vec2 d, f;
+};
+
+// What the force pass reads of a particle, in one place (one cache-line half per particle).
+struct SphPairInput {
+  double p_over_n2, inv_n, vx, vy;
 };
 
 class SphEngine {
@@ -52,6 +61,9 @@ class SphEngine {
  private:
   void rebuild_pairs_if_needed();
   void compute_density();
+  template <SmoothingKernel::Type T>
+  void density_pairs(std::vector<double>& buf, std::size_t begin, std::size_t end);
+  void force_pairs(std::vector<double>& buf, std::size_t begin, std::size_t end) const;
   double pressure(std::int32_t a) const;
   // (5.1) for pair p of the list at the current densities, given the like-pair P/n² of its two particles.
   Vec2 pair_force(std::size_t p, double p_over_n2_i, double p_over_n2_j) const;
@@ -66,7 +78,10 @@ class SphEngine {
   std::vector<std::int32_t> active_, moving_;
   std::vector<double> n_static_;  // wall–wall part of wall densities (constant: walls do not move)
   std::vector<double> n_, ax_, ay_, x_built_, y_built_;
-  std::vector<double> mu_;
+  std::vector<double> mu_, vhx_, vhy_;
+  std::vector<SphPairInput> pair_input_;
+  bool one_phase_ = true;  // every particle of one phase: μ_ij = 2μ and no unlike-pair excess
+  double inv_lx_ = 0.0, inv_ly_ = 0.0;
   PairList pairs_;
   std::vector<double> pair_dx_, pair_dy_, pair_f_;  // minimum-image q_i − q_j and w'(r)/r per pair
   std::vector<std::vector<double>> thread_buf_;

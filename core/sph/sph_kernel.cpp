@@ -15,6 +15,9 @@ SmoothingKernel::SmoothingKernel(Type type, double h) : type_(type), h_(h) {
     support_ = 2.0 * h;
     sigma_ = 7.0 / (4.0 * M_PI * h * h);
   }
+  inv_h_ = 1.0 / h;
+  sigma_over_h_ = sigma_ / h;
+  sigma_over_h2_ = sigma_ / (h * h);
 }
 
 double SmoothingKernel::w(double r) const {

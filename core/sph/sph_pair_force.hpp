@@ -36,9 +36,20 @@ inline double pair_viscosity(double mu_i, double mu_j, PairViscosityMean mean) {
   return 4.0 * mu_i * mu_j / (mu_i + mu_j);
 }
 
+// (5.1) in components, the one definition: p_sum = P_i/n_i² + P_j/n_j², visc = μ_ij / (n_i n_j). The engine's
+// pair loop calls it with reciprocals 1/n taken once per particle.
+inline void sph_pair_force(double p_sum, double visc, double F, double qx, double qy, double vx, double vy, double& fx,
+                           double& fy) {
+  const double a = -p_sum * F, b = visc * F;
+  fx = a * qx + b * vx;
+  fy = a * qy + b * vy;
+}
+
 inline Vec2 sph_pair_force(double p_over_n2_i, double p_over_n2_j, double mu_ij, double n_i, double n_j, double F,
                            const Vec2& q_ij, const Vec2& v_ij) {
-  return -(p_over_n2_i + p_over_n2_j) * F * q_ij + mu_ij * F / (n_i * n_j) * v_ij;
+  double fx, fy;
+  sph_pair_force(p_over_n2_i + p_over_n2_j, mu_ij / (n_i * n_j), F, q_ij.x(), q_ij.y(), v_ij.x(), v_ij.y(), fx, fy);
+  return {fx, fy};
 }
 
 }  // namespace closurelab

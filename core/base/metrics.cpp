@@ -1,5 +1,6 @@
 #include "core/base/metrics.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace closurelab {
@@ -24,6 +25,20 @@ ErrorNorms error_norms(const Eigen::VectorXd& u, const Eigen::VectorXd& ref, con
   e.max_rel = scale > 0 ? e.max_rel / scale : e.max_rel;
   e.l2_rel = den > 0 ? std::sqrt(num / den) : std::sqrt(num);
   return e;
+}
+
+json node_error_summary(const Eigen::VectorXd& a, const Eigen::VectorXd& ref, const std::vector<bool>& mask,
+                        double scale) {
+  double mx = 0.0, s2 = 0.0, r2 = 0.0;
+  int n = 0;
+  for (Eigen::Index k = 0; k < a.size(); ++k) {
+    if (!mask[k]) continue;
+    mx = std::max(mx, std::abs(a[k] - ref[k]));
+    s2 += (a[k] - ref[k]) * (a[k] - ref[k]);
+    r2 += ref[k] * ref[k];
+    ++n;
+  }
+  return {{"max_rel", mx / scale}, {"l2_rel", r2 > 0 ? std::sqrt(s2 / r2) : 0.0}, {"nodes", n}};
 }
 
 double peak_relative_difference(const Eigen::VectorXd& u, const Eigen::VectorXd& ref) {

@@ -19,6 +19,11 @@ struct ErrorNorms {
 ErrorNorms error_norms(const Eigen::VectorXd& u, const Eigen::VectorXd& ref, const std::vector<bool>& mask,
                        double scale);
 
+// The stress tables' summary (App. C, snapshot closure): {"max_rel": max|a − ref| / scale, "l2_rel":
+// ‖a − ref‖₂ / ‖ref‖₂ (0 when ref vanishes), "nodes": the count}, over the nodes where mask is true.
+json node_error_summary(const Eigen::VectorXd& a, const Eigen::VectorXd& ref, const std::vector<bool>& mask,
+                        double scale);
+
 // The paper's §7 metric: relative difference of the peak values, (max u − max ref) / max ref.
 double peak_relative_difference(const Eigen::VectorXd& u, const Eigen::VectorXd& ref);
 

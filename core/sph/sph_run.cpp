@@ -18,6 +18,18 @@ json SphRunResult::to_json() const {
   return j;
 }
 
+json SphRunResult::cost_json(double averaging_seconds) const {
+  const double particle_steps = static_cast<double>(moving_particles) * steps;
+  return {{"wall_seconds", wall_seconds},
+          {"averaging_seconds", averaging_seconds},
+          {"steps", steps},
+          {"dt", dt},
+          {"model_time", time},
+          {"particle_steps", particle_steps},
+          {"particle_steps_per_second", wall_seconds > 0 ? particle_steps / wall_seconds : 0.0},
+          {"pair_evaluations", pair_evaluations}};
+}
+
 SphRunResult SphRunResult::from_json(const json& j) {
   SphRunResult r;
   r.status = parse_name<Status>(j.at("status").get<std::string>(), "/status");

@@ -31,6 +31,9 @@ struct SphRunResult : TimeLoopResult {
   std::int64_t moving_particles = 0, active_particles = 0, total_particles = 0;
   std::int64_t pair_evaluations = 0, list_rebuilds = 0;
   json to_json() const;
+  // The cost columns of a validation row: wall and averaging seconds, steps, dt, model time, particle-steps
+  // (and per second), pair evaluations.
+  json cost_json(double averaging_seconds) const;
   static SphRunResult from_json(const json& j);  // the inverse of to_json (a stored run's record)
 };
 

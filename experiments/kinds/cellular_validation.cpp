@@ -111,16 +111,8 @@ json run_cellular_validation(const Scene& scene, const AveragingKernel& kernel, 
   errors["max_displacement_dx"] = max_displacement_in_spacings(scene, ps);
   row["errors"] = errors;
   const double avg_seconds = std::chrono::duration<double>(clock::now() - t_avg).count();
-  row["cost"] = {{"wall_seconds", sph.wall_seconds},
-                 {"averaging_seconds", avg_seconds},
-                 {"steps", sph.steps},
-                 {"dt", sph.dt},
-                 {"model_time", sph.time},
-                 {"particle_steps", static_cast<double>(sph.moving_particles) * sph.steps},
-                 {"particle_steps_per_second",
-                  sph.wall_seconds > 0 ? static_cast<double>(sph.moving_particles) * sph.steps / sph.wall_seconds : 0.0},
-                 {"pair_evaluations", sph.pair_evaluations},
-                 {"peak_memory_mib", peak_memory_mib()}};
+  row["cost"] = sph.cost_json(avg_seconds);
+  row["cost"]["peak_memory_mib"] = peak_memory_mib();
   return row;
 }
 

@@ -14,6 +14,7 @@
 #include "core/scenes/analytic.hpp"
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/metrics.hpp"
 #include "core/closure/stress_quadrature.hpp"
 #include "experiments/runner/cell_config.hpp"
 #include "experiments/runner/provenance.hpp"
@@ -53,18 +54,6 @@ TimedEvaluation timed_evaluate(StressQuadrature& q, const VelocitySampler& v, in
   return out;
 }
 
-json error_summary(const Eigen::VectorXd& a, const Eigen::VectorXd& ref, const std::vector<bool>& mask, double scale) {
-  double mx = 0.0, s2 = 0.0, r2 = 0.0;
-  int n = 0;
-  for (Eigen::Index k = 0; k < a.size(); ++k) {
-    if (!mask[k]) continue;
-    mx = std::max(mx, std::abs(a[k] - ref[k]));
-    s2 += (a[k] - ref[k]) * (a[k] - ref[k]);
-    r2 += ref[k] * ref[k];
-    ++n;
-  }
-  return {{"max_rel", mx / scale}, {"l2_rel", r2 > 0 ? std::sqrt(s2 / r2) : 0.0}, {"nodes", n}};
-}
 
 class QuadratureConvergence : public ExperimentKind {
  public:
@@ -158,10 +147,10 @@ class QuadratureConvergence : public ExperimentKind {
     if (!(scale > 0)) throw NumericalError("exact T_xy vanishes in the channel");
     json row;
     row["status"] = "ok";
-    row["errors"] = {{"channel", error_summary(tq, te, channel, scale)},
-                     {"interior", error_summary(tq, te, interior, scale)},
-                     {"wall_band", error_summary(tq, te, band, scale)},
-                     {"inside_walls", error_summary(tq, te, walls, scale)},
+    row["errors"] = {{"channel", node_error_summary(tq, te, channel, scale)},
+                     {"interior", node_error_summary(tq, te, interior, scale)},
+                     {"wall_band", node_error_summary(tq, te, band, scale)},
+                     {"inside_walls", node_error_summary(tq, te, walls, scale)},
                      {"max_abs_exact_xy", scale}};
     json derived = {{"particles", static_cast<double>(scene->nx) * scene->ny}, {"dx", scene->dx}, {"eta", eta}};
     if (const auto* c = dynamic_cast<const CoarseQuadrature*>(quadrature.get())) {

@@ -14,6 +14,7 @@
 
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/metrics.hpp"
 #include "core/closure/deconvolver.hpp"
 #include "core/closure/forward_operator.hpp"
 #include "core/closure/reconstruction.hpp"
@@ -83,18 +84,6 @@ Eigen::VectorXd interaction_xy(const Scene& scene, ParticleSystem ps, const Aver
   return average_particles(ps, scene.box, kernel, nodes, req, pairs).interaction.at("xy");
 }
 
-json relative_errors(const Eigen::VectorXd& a, const Eigen::VectorXd& ref, const std::vector<bool>& mask, double scale) {
-  double mx = 0.0, s2 = 0.0, r2 = 0.0;
-  int n = 0;
-  for (Eigen::Index k = 0; k < a.size(); ++k) {
-    if (!mask[k]) continue;
-    mx = std::max(mx, std::abs(a[k] - ref[k]));
-    s2 += (a[k] - ref[k]) * (a[k] - ref[k]);
-    r2 += ref[k] * ref[k];
-    ++n;
-  }
-  return {{"max_rel", mx / scale}, {"l2_rel", r2 > 0 ? std::sqrt(s2 / r2) : 0.0}, {"nodes", n}};
-}
 
 class SnapshotClosure : public ExperimentKind {
  public:
@@ -204,9 +193,9 @@ class SnapshotClosure : public ExperimentKind {
     }
     row["snapshot"] = {{"time", snapshot_time}, {"particles", ps.size()}, {"pairs", pairs}};
     row["deconvolution"] = r.to_json();
-    row["errors"] = {{"stress_xy", {{"channel", relative_errors(t_closure, t_exact, channel, scale)},
-                                    {"interior", relative_errors(t_closure, t_exact, interior, scale)},
-                                    {"wall_band", relative_errors(t_closure, t_exact, band, scale)},
+    row["errors"] = {{"stress_xy", {{"channel", node_error_summary(t_closure, t_exact, channel, scale)},
+                                    {"interior", node_error_summary(t_closure, t_exact, interior, scale)},
+                                    {"wall_band", node_error_summary(t_closure, t_exact, band, scale)},
                                     {"max_abs_exact", scale}}},
                      {"particle_velocity_max_rel", v_scale > 0 ? v_err / v_scale : 0.0}};
     row["profile"] = {{"y", m.coarse.nodes()}, {"exact_xy", t_exact}, {"closure_xy", t_closure},

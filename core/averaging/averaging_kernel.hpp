@@ -20,7 +20,8 @@ class AveragingKernel {
   virtual double factor(double t) const = 0;
   // Fourier symbol of the 1D factor, ∫ φ(t) e^{-2πiξt} dt (real, the factor is even).
   virtual double factor_symbol(double xi) const = 0;
-  // Radius beyond which φ is zero or below 1e-16 of its peak, per coordinate: the numerical support.
+  // Radius beyond which φ is zero or negligible against its peak (below ~1e-15 of it: the Gaussian's 6η gives
+  // exp(−36) ≈ 2.3e-16), per coordinate: the numerical support.
   virtual double support_radius() const = 0;
   // Appendix A: ∫₀¹ ψ(s(x − q_k) + (1 − s)(x − q_j)) ds, for the bond from q_j to q_k.
   virtual double bond_integral(const Vec2& x, const Vec2& qj, const Vec2& qk) const = 0;

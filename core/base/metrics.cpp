@@ -27,6 +27,22 @@ ErrorNorms error_norms(const Eigen::VectorXd& u, const Eigen::VectorXd& ref, con
   return e;
 }
 
+ErrorNorms vector_error_norms(const Eigen::VectorXd& ux, const Eigen::VectorXd& uy, const Eigen::VectorXd& rx,
+                              const Eigen::VectorXd& ry, double scale) {
+  ErrorNorms e;
+  double num = 0.0, den = 0.0;
+  for (Eigen::Index k = 0; k < ux.size(); ++k) {
+    const double d2 = (ux[k] - rx[k]) * (ux[k] - rx[k]) + (uy[k] - ry[k]) * (uy[k] - ry[k]);
+    e.max_rel = std::max(e.max_rel, d2);
+    num += d2;
+    den += rx[k] * rx[k] + ry[k] * ry[k];
+    ++e.count;
+  }
+  e.max_rel = scale > 0 ? std::sqrt(e.max_rel) / scale : std::sqrt(e.max_rel);
+  e.l2_rel = den > 0 ? std::sqrt(num / den) : std::sqrt(num);
+  return e;
+}
+
 json node_error_summary(const Eigen::VectorXd& a, const Eigen::VectorXd& ref, const std::vector<bool>& mask,
                         double scale) {
   double mx = 0.0, s2 = 0.0, r2 = 0.0;

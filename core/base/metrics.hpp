@@ -19,6 +19,11 @@ struct ErrorNorms {
 ErrorNorms error_norms(const Eigen::VectorXd& u, const Eigen::VectorXd& ref, const std::vector<bool>& mask,
                        double scale);
 
+// The same for a vector field (u_x, u_y) against (r_x, r_y) at every point: max |u − r| (Euclidean) / scale and
+// ‖u − r‖₂ / ‖r‖₂ over both components.
+ErrorNorms vector_error_norms(const Eigen::VectorXd& ux, const Eigen::VectorXd& uy, const Eigen::VectorXd& rx,
+                              const Eigen::VectorXd& ry, double scale);
+
 // The stress tables' summary (App. C, snapshot closure): {"max_rel": max|a − ref| / scale, "l2_rel":
 // ‖a − ref‖₂ / ‖ref‖₂ (0 when ref vanishes), "nodes": the count}, over the nodes where mask is true.
 json node_error_summary(const Eigen::VectorXd& a, const Eigen::VectorXd& ref, const std::vector<bool>& mask,

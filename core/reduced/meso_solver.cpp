@@ -13,7 +13,7 @@
 
 namespace closurelab {
 
-json MesoResult::to_json() const {
+json ClosureRunResult::to_json() const {
   json j = TimeLoopResult::to_json();
   j["message"] = message;
   j["deconvolution_matvecs"] = deconvolution_matvecs;

@@ -118,12 +118,16 @@ struct MesoOracles {
   Eigen::VectorXd row_y, row_velocity;  // the fluid lattice rows (ascending y) and V_d there
 };
 
-struct MesoResult : TimeLoopResult {
-  Eigen::VectorXd y, v;  // coarse nodes and v̄_x there
+// A reduced-model run's record, in one and two dimensions: the loop's outcome and what the closure cost.
+struct ClosureRunResult : TimeLoopResult {
   long deconvolution_matvecs = 0;
   double deconvolution_seconds = 0.0, quadrature_seconds = 0.0;
   QuadratureCost quadrature_cost;
-  json to_json() const;  // everything but the profile
+  json to_json() const;  // everything but the fields
+};
+
+struct MesoResult : ClosureRunResult {
+  Eigen::VectorXd y, v;  // coarse nodes and v̄_x there
 };
 
 // The solver section of a spec ("solver": {...}): its schema, defaults from MesoSolverOptions{} (one source;

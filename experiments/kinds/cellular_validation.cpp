@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/averaging/averaging.hpp"
+#include "core/base/metrics.hpp"
 #include "core/scenes/analytic.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/runner/provenance.hpp"
@@ -31,25 +32,6 @@ double max_displacement_in_spacings(const Scene& scene, const ParticleSystem& ps
   }
   return std::sqrt(d2) / scene.dx;
 }
-
-namespace {
-
-// max |u − ref| (vector norm) / scale and ‖u − ref‖₂ / ‖ref‖₂ over all points.
-json field_errors(const Eigen::VectorXd& ux, const Eigen::VectorXd& uy, const Eigen::VectorXd& rx,
-                  const Eigen::VectorXd& ry, double scale) {
-  double worst = 0.0, diff2 = 0.0, ref2 = 0.0;
-  for (Eigen::Index i = 0; i < ux.size(); ++i) {
-    const double e2 = (ux[i] - rx[i]) * (ux[i] - rx[i]) + (uy[i] - ry[i]) * (uy[i] - ry[i]);
-    worst = std::max(worst, e2);
-    diff2 += e2;
-    ref2 += rx[i] * rx[i] + ry[i] * ry[i];
-  }
-  return {{"max_rel", std::sqrt(worst) / scale},
-          {"l2_rel", ref2 > 0.0 ? std::sqrt(diff2 / ref2) : std::sqrt(diff2)},
-          {"count", ux.size()}};
-}
-
-}  // namespace
 
 json run_cellular_validation(const Scene& scene, const AveragingKernel& kernel, SphRunOptions opt, double spacing) {
   using clock = std::chrono::steady_clock;
@@ -94,7 +76,7 @@ json run_cellular_validation(const Scene& scene, const AveragingKernel& kernel, 
   errors["amplitude"] = {{"fitted", fitted},
                          {"analytic", amp},
                          {"relative_difference", amp != 0.0 ? (fitted - amp) / amp : fitted / scale}};
-  errors["particles_vs_analytic"] = field_errors(ux, uy, rx, ry, scale);
+  errors["particles_vs_analytic"] = vector_error_norms(ux, uy, rx, ry, scale).to_json();
 
   // Gaussian averages on the mesh: a separable even window multiplies the mode by its 2D symbol at
   // (k, k) / 2π (for the Gaussian, exp(−|k|² η² / 4) with |k|² = 2k²).
@@ -106,7 +88,7 @@ json run_cellular_validation(const Scene& scene, const AveragingKernel& kernel, 
     const Vec2 v = factor * amp * cellular_mode(mesh.node(n).x(), mesh.node(n).y(), k);
     ax[n] = v.x(), ay[n] = v.y();
   }
-  errors["averaged_vs_averaged_analytic"] = field_errors(f.vx, f.vy, ax, ay, scale);
+  errors["averaged_vs_averaged_analytic"] = vector_error_norms(f.vx, f.vy, ax, ay, scale).to_json();
   errors["averaging_factor"] = factor;
   errors["max_displacement_dx"] = max_displacement_in_spacings(scene, ps);
   row["errors"] = errors;

@@ -21,7 +21,11 @@ struct DirectReference {
 
 // One direct run, computed here and now.
 DirectReference run_direct_reference(const Scene& scene, const AveragingKernel& kernel, SphRunOptions options,
-                                     const TensorMesh2D& observe_mesh);
+                                     const TensorMesh2D& observed);
+
+// The mesh whose averaged v_x decides a direct run's steady state: a column of rows of the given spacing for an
+// x-invariant scene (core/averaging/averaging.hpp, column_mesh), else a periodic tensor mesh of that spacing.
+TensorMesh2D observe_mesh(const Scene& scene, double spacing);
 
 // What determines a direct reference: the resolved scene, kernel and SPH solver sections of a cell, the row
 // spacing of the column mesh whose averaged velocity decides steady state, and the snapshot times.

@@ -2,6 +2,7 @@
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/kinds/quadrature_convergence.hpp"
 #include "experiments/kinds/reduced_model.hpp"
+#include "experiments/kinds/reduced_model_2d.hpp"
 #include "experiments/kinds/snapshot_closure.hpp"
 #include "experiments/kinds/sph_validation.hpp"
 #include "experiments/kinds/stability_experiment.hpp"
@@ -15,6 +16,7 @@ const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds() {
     k.push_back(make_stability_experiment());
     k.push_back(make_quadrature_convergence_experiment());
     k.push_back(make_reduced_model_experiment());
+    k.push_back(make_reduced_model_2d_experiment());
     k.push_back(make_snapshot_closure_experiment());
     return k;
   }();

@@ -22,6 +22,8 @@ Views (the summarize_*.py files beside this one, kept importable and runnable on
                          experiment error_budget_* summarize_error_budget  table  -> summary.md, summary.png
                          experiment two_phase      summarize_two_phase_reduced  main, eta -> OUT_DIR/
                          otherwise                 summarize_reduced_model  table  -> summary.md, summary.png
+  reduced_model_2d                                 summarize_cellular_reduced  table -> summary.md, summary_fields.png
+                                                   (experiment pareto_*: the front as above, and the fields)
 Every number is read from the tables.
 """
 import contextlib
@@ -56,8 +58,10 @@ def view_of(table):
         if name == "two_phase":
             return "summarize_two_phase_reduced", "folder", ""
         return "summarize_reduced_model", "prefix", "summary"
+    if kind == "reduced_model_2d":
+        return "summarize_cellular_reduced", "prefix", "summary"
     raise SystemExit(f"summarize: table kind '{kind}' has no view; known kinds: deconvolution_stability, "
-                     "quadrature_convergence, direct_sph_validation, reduced_model")
+                     "quadrature_convergence, direct_sph_validation, reduced_model, reduced_model_2d")
 
 
 def run_view(script, args, stdout_file=None):

@@ -1,0 +1,245 @@
+#include "core/reduced/meso_solver_2d.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "core/averaging/averaging.hpp"
+#include "core/base/errors.hpp"
+#include "core/closure/reconstruction.hpp"
+
+namespace closurelab {
+
+ParamSchema meso_solver_2d_schema() {
+  const MesoSolver2DOptions d;  // the defaults
+  ParamSchema schema{
+      number_param("kappa", d.kappa, "time-step coefficient of (5.21)-(5.22) (2D: half the 1D default)", 0.0, 1.0, true),
+      number_param("spacing_over_eta", d.spacing_over_eta, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0)};
+  for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
+  return schema;
+}
+
+MesoSolver2DOptions meso_2d_options_from(const json& s) {
+  MesoSolver2DOptions o;
+  o.kappa = s.at("kappa").get<double>();
+  o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
+  read_time_loop(s, o);
+  return o;
+}
+
+TensorMesh2D coarse_mesh_2d(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta) {
+  if (scene.has_walls || !scene.box.periodic_x || !scene.box.periodic_y)
+    throw ConfigError("/scene", "the 2D reduced model needs a doubly periodic box without walls; scene '" + scene.name +
+                                    "' is not one");
+  const double target = spacing_over_eta * kernel.eta();
+  const int nx = static_cast<int>(std::lround(scene.box.lx / target));
+  const int ny = static_cast<int>(std::lround(scene.box.ly / target));
+  if (nx < 4 || ny < 4)
+    throw ConfigError("/solver/spacing_over_eta", "fewer than 4 coarse nodes along a side of the box (" +
+                                                      std::to_string(nx) + " x " + std::to_string(ny) + ")");
+  return {UniformMesh1D::cell_centred(0.0, scene.box.lx, nx, true),
+          UniformMesh1D::cell_centred(0.0, scene.box.ly, ny, true)};
+}
+
+TensorMesh2D x_faces_of(const TensorMesh2D& c) {
+  TensorMesh2D f = c;
+  f.x.origin -= 0.5 * c.x.spacing;  // i Δ: the left face of cell i
+  return f;
+}
+
+TensorMesh2D y_faces_of(const TensorMesh2D& c) {
+  TensorMesh2D f = c;
+  f.y.origin -= 0.5 * c.y.spacing;
+  return f;
+}
+
+namespace {
+
+const std::vector<std::string> kXFaceComponents{"xx", "yx"}, kYFaceComponents{"xy", "yy"};
+
+ConfigError under_quadrature(const ConfigError& e) { return ConfigError("/quadrature" + e.path(), e.message()); }
+
+void add_setup(QuadratureCost& total, const QuadratureCost& one) {
+  total.bond_weights += one.bond_weights;
+  total.sample_points += one.sample_points;
+  total.setup_seconds += one.setup_seconds;
+}
+
+}  // namespace
+
+void check_meso_solver_2d(const Scene& scene, const AveragingKernel& kernel, const StressQuadrature& quadrature,
+                          const MesoSolver2DOptions& o) {
+  const TensorMesh2D coarse = coarse_mesh_2d(scene, kernel, o.spacing_over_eta);
+  try {
+    quadrature.check(scene, x_faces_of(coarse), kXFaceComponents);
+    quadrature.check(scene, y_faces_of(coarse), kYFaceComponents);
+  } catch (const ConfigError& e) {
+    throw under_quadrature(e);
+  }
+}
+
+MesoSolver2D::MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, Deconvolver& deconvolver,
+                           StressQuadrature& on_x_faces, StressQuadrature& on_y_faces, MesoSolver2DOptions options)
+    : scene_(scene),
+      kernel_(kernel),
+      deconvolver_(deconvolver),
+      on_x_faces_(on_x_faces),
+      on_y_faces_(on_y_faces),
+      opt_(std::move(options)) {
+  coarse_ = coarse_mesh_2d(scene, kernel, opt_.spacing_over_eta);
+  fine_ = TensorMesh2D{UniformMesh1D::cell_centred(0.0, scene.box.lx, scene.nx, true),
+                       UniformMesh1D::cell_centred(0.0, scene.box.ly, scene.ny, true)};
+  solution_ = opt_.discretization == Discretization::coarse_coarse ? coarse_ : fine_;
+  op_ = make_averaging_operator_2d(kernel, coarse_, fine_, opt_.discretization);
+  try {
+    deconvolver_.setup(op_);
+  } catch (const ConfigError& e) {
+    throw ConfigError("/closure/deconvolver" + e.path(), e.message());
+  }
+  try {
+    on_x_faces_.setup(scene, kernel, x_faces_of(coarse_), kXFaceComponents);
+    on_y_faces_.setup(scene, kernel, y_faces_of(coarse_), kYFaceComponents);
+  } catch (const ConfigError& e) {
+    throw under_quadrature(e);
+  }
+  add_setup(quad_cost_, on_x_faces_.setup_cost());
+  add_setup(quad_cost_, on_y_faces_.setup_cost());
+  // ρ̄ (2.8) and F̄ = (2.14) / (2.8) of the lattice: the mass-weighted average of the body force, i.e. the
+  // velocity average (2.9) of particles that carry F(q) as their velocity.
+  ParticleSystem lattice = scene.make_particles();
+  for (std::size_t a = 0; a < lattice.size(); ++a) {
+    const Vec2 f = scene.body_force ? scene.body_force(lattice.x[a], lattice.y[a])
+                                    : Vec2(scene.force_x ? scene.force_x(lattice.y[a]) : 0.0, 0.0);
+    lattice.vx[a] = f.x();
+    lattice.vy[a] = f.y();
+  }
+  const MesoFields f = average_particles(lattice, scene.box, kernel, coarse_, AveragingRequest{});
+  rho_bar_ = f.rho;
+  fx_ = f.vx;
+  fy_ = f.vy;
+  vx_ = vy_ = Eigen::VectorXd::Zero(coarse_.size());
+}
+
+void MesoSolver2D::set_velocity(const Eigen::VectorXd& vx, const Eigen::VectorXd& vy) {
+  if (vx.size() != vx_.size() || vy.size() != vy_.size()) throw ConfigError("", "velocity has the wrong size");
+  vx_ = vx;
+  vy_ = vy;
+}
+
+bool MesoSolver2D::deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std::string& issue) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Eigen::VectorXd b = v;
+  if (opt_.discretization == Discretization::fine_fine) {  // the coarse data interpolated onto the lattice
+    std::vector<Vec2> pts(static_cast<std::size_t>(fine_.size()));
+    for (int n = 0; n < fine_.size(); ++n) pts[static_cast<std::size_t>(n)] = fine_.node(n);
+    b = Reconstruction(coarse_, 2, v).sample(pts);
+  }
+  const DeconvolutionResult r = deconvolver_.solve(b, opt_.noise_level);
+  matvecs_ += r.cost.matvecs;
+  x = r.x;
+  deconv_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!x.allFinite()) {
+    issue = "deconvolution returned non-finite values (" + r.stats.message + ")";
+    return false;
+  }
+  return true;
+}
+
+bool MesoSolver2D::rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue) {
+  Eigen::VectorXd rx, ry;
+  if (!deconvolve(vx_, rx, issue) || !deconvolve(vy_, ry, issue)) return false;
+  const Reconstruction recon_x(solution_, 2, std::move(rx)), recon_y(solution_, 2, std::move(ry));
+  const VelocitySampler sampler = [&](const std::vector<Vec2>& points) {
+    Eigen::Matrix2Xd out(2, static_cast<Eigen::Index>(points.size()));
+    out.row(0) = recon_x.sample(points).transpose();
+    out.row(1) = recon_y.sample(points).transpose();
+    return out;
+  };
+  const auto t1 = std::chrono::steady_clock::now();
+  const QuadratureResult on_x = on_x_faces_.evaluate(sampler);
+  const QuadratureResult on_y = on_y_faces_.evaluate(sampler);
+  quad_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  quad_cost_.add(on_x);
+  quad_cost_.add(on_y);
+  for (const QuadratureResult* r : {&on_x, &on_y})
+    if (r->status != Status::converged) {
+      issue = r->message;
+      return false;
+    }
+  const Eigen::VectorXd &txx = on_x.stress.at("xx"), &tyx = on_x.stress.at("yx");
+  const Eigen::VectorXd &txy = on_y.stress.at("xy"), &tyy = on_y.stress.at("yy");
+  const int nx = coarse_.nx(), ny = coarse_.ny();
+  const double hx = coarse_.x.spacing, hy = coarse_.y.spacing;
+  ax.resize(coarse_.size());
+  ay.resize(coarse_.size());
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int n = coarse_.index(i, j), east = coarse_.index((i + 1) % nx, j), north = coarse_.index(i, (j + 1) % ny);
+      const double div_x = (txx[east] - txx[n]) / hx + (txy[north] - txy[n]) / hy;
+      const double div_y = (tyx[east] - tyx[n]) / hx + (tyy[north] - tyy[n]) / hy;
+      ax[n] = div_x / rho_bar_[n] + fx_[n];
+      ay[n] = div_y / rho_bar_[n] + fy_[n];
+    }
+  return true;
+}
+
+bool MesoSolver2D::step(double dt, std::string& issue) {
+  Eigen::VectorXd ax, ay;
+  if (!rate(ax, ay, issue)) return false;
+  vx_ += dt * ax;
+  vy_ += dt * ay;
+  return true;
+}
+
+double MesoSolver2D::time_step() const {
+  const double h = std::min(coarse_.x.spacing, coarse_.y.spacing);
+  const double vmax = (vx_.array().square() + vy_.array().square()).sqrt().maxCoeff();
+  double dt = scene_.rho0 * h * h / scene_.max_viscosity();  // (5.22), as the 1D model takes it
+  if (vmax > 0) dt = std::min(dt, h / vmax);                          // (5.21)
+  return opt_.kappa * dt;
+}
+
+MesoResult2D MesoSolver2D::run() {
+  SteppedModel model;
+  model.name = "reduced model (2D)";
+  model.time_step = [&] { return time_step(); };
+  model.step = [&](double dt, std::string& issue) { return step(dt, issue); };
+  model.observe = [&] {
+    Eigen::VectorXd o(2 * vx_.size());
+    o << vx_, vy_;
+    return o;
+  };
+  model.check_state = [&](std::string& issue) {
+    if (!vx_.allFinite() || !vy_.allFinite()) {
+      issue = "coarse velocity is not finite";
+      return false;
+    }
+    const double mag = std::max(vx_.cwiseAbs().maxCoeff(), vy_.cwiseAbs().maxCoeff());
+    if (scene_.analytic_peak > 0 && mag > opt_.divergence_factor * scene_.analytic_peak) {
+      std::ostringstream os;
+      os << "diverged: max|v| = " << mag << " exceeds " << opt_.divergence_factor << " x the analytic peak";
+      issue = os.str();
+      return false;
+    }
+    return true;
+  };
+  if (opt_.on_snapshot) model.snapshot = [&](double t) { opt_.on_snapshot(t, vx_, vy_); };
+  model.describe = [&] {
+    std::ostringstream os;
+    os << "max|v_x| = " << vx_.cwiseAbs().maxCoeff();
+    return os.str();
+  };
+  MesoResult2D res;
+  static_cast<TimeLoopResult&>(res) = run_time_loop(model, opt_);
+  res.mesh = coarse_;
+  res.vx = vx_;
+  res.vy = vy_;
+  res.deconvolution_matvecs = matvecs_;
+  res.deconvolution_seconds = deconv_seconds_;
+  res.quadrature_seconds = quad_seconds_;
+  res.quadrature_cost = quad_cost_;
+  return res;
+}
+
+}  // namespace closurelab

@@ -1,0 +1,254 @@
+// Experiment kind "reduced_model_2d": the two-dimensional reduced model (core/reduced/meso_solver_2d.hpp) on a
+// cellular scene, against the exact velocity A(t) · mode, its Gaussian average and the averaged direct SPH of
+// the same box, with the closure's Landweber prediction, the transient, and the cost and speed-up.
+#include "experiments/kinds/reduced_model_2d.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "core/averaging/averaging.hpp"
+#include "core/base/errors.hpp"
+#include "core/base/metrics.hpp"
+#include "core/reduced/meso_solver_2d.hpp"
+#include "core/scenes/analytic.hpp"
+#include "experiments/kinds/direct_reference.hpp"
+#include "experiments/kinds/reduced_sections.hpp"
+#include "experiments/runner/cell_config.hpp"
+#include "experiments/runner/provenance.hpp"
+
+namespace closurelab {
+
+namespace {
+
+ParamSchema transient_schema() {
+  return {array_param("t_over_tau", json::array(),
+                      "snapshot times in units of the mode's decay time tau = 1 / (2 k^2 nu) (ascending); the final "
+                      "state is always reported as well")};
+}
+
+// A vector field at the nodes of a mesh, flat j * nx + i.
+struct Field {
+  Eigen::VectorXd x, y;
+};
+
+Field mode_field(const TensorMesh2D& mesh, double k, double amplitude) {
+  Field f{Eigen::VectorXd(mesh.size()), Eigen::VectorXd(mesh.size())};
+  for (int n = 0; n < mesh.size(); ++n) {
+    const Vec2 v = amplitude * cellular_mode(mesh.node(n).x(), mesh.node(n).y(), k);
+    f.x[n] = v.x();
+    f.y[n] = v.y();
+  }
+  return f;
+}
+
+Eigen::VectorXd speed(const Field& f) { return (f.x.array().square() + f.y.array().square()).sqrt(); }
+
+// The least-squares amplitude of a node field on the mode: Σ v · m / Σ |m|².
+double fitted_amplitude(const Field& f, const Field& unit) {
+  return (f.x.dot(unit.x) + f.y.dot(unit.y)) / (unit.x.squaredNorm() + unit.y.squaredNorm());
+}
+
+// Every node is reported (no walls): "all_nodes" and "all" are the same set, both named as in reduced_model.
+json norms(const Field& u, const Field& ref, double scale) {
+  const json n = vector_error_norms(u.x, u.y, ref.x, ref.y, scale).to_json();
+  return {{"all_nodes", n}, {"all", n}, {"peak_relative_difference", peak_relative_difference(speed(u), speed(ref))}};
+}
+
+json field_json(const Field& f) { return {{"vx", f.x}, {"vy", f.y}}; }
+
+class ReducedModel2D : public ExperimentKind {
+ public:
+  std::string name() const override { return "reduced_model_2d"; }
+  std::string description() const override {
+    return "two-dimensional coarse solver (both velocity components, staggered stress divergence) with a "
+           "deconvolution closure and a stress quadrature on a cellular scene, vs the exact field, its average "
+           "and the averaged direct SPH, with cost and speed-up";
+  }
+
+  std::vector<KindSection> sections() const override {
+    return {{"scene", "the scene (required; one with a cellular mode)", "scene", {}},
+            {"kernel", "the averaging kernel; its eta must equal the scene's", "kernel", {}},
+            {"closure", "the deconvolution closure (both components, Kronecker operator)", "", closure_schema()},
+            {"quadrature", "the stress quadrature (default exact), one instance per face mesh", "quadrature", {}},
+            {"solver", "the 2D coarse solver", "", meso_solver_2d_schema()},
+            {"reference", "the direct SPH reference", "", reference_schema()},
+            {"transient", "snapshots of both solvers", "", transient_schema()}};
+  }
+
+  json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
+    check_keys(cell, path, {"scene", "kernel", "closure", "quadrature", "solver", "reference", "transient"});
+    json out;
+    auto scene = build_scene(cell, path, reg, &out["scene"]);
+    if (!scene->cellular_mode)
+      throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no cellular mode (the 2D model's exact "
+                                                                    "solution); use the cellular scene");
+    auto kernel = build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
+    out["closure"] = resolve_section(cell, "closure", closure_schema(), path);
+    out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
+    out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
+    out["solver"] = resolve_section(cell, "solver", meso_solver_2d_schema(), path);
+    check_time_loop(out["solver"], path + "/solver");
+    out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
+    out["reference"]["solver"] =
+        resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
+    check_time_loop(out["reference"]["solver"], path + "/reference/solver");
+    out["transient"] = resolve_section(cell, "transient", transient_schema(), path);
+    double previous = 0.0;
+    for (std::size_t k = 0; k < out["transient"]["t_over_tau"].size(); ++k) {
+      const json& t = out["transient"]["t_over_tau"][k];
+      if (!t.is_number() || !std::isfinite(t.get<double>()) || t.get<double>() <= previous)
+        throw ConfigError(path + "/transient/t_over_tau/" + std::to_string(k),
+                          "snapshot times must be finite numbers, positive and ascending");
+      previous = t.get<double>();
+    }
+    try {
+      check_meso_solver_2d(*scene, *kernel, *reg.quadratures.create(out["quadrature"], "/quadrature"), options(out));
+    } catch (const ConfigError& e) {
+      throw ConfigError(path + e.path(), e.message());
+    }
+    return out;
+  }
+
+  json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
+    const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
+    const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
+    auto deconv = reg.deconvolvers.create(cfg.at("closure").at("deconvolver"), "/closure/deconvolver");
+    auto on_x_faces = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
+    auto on_y_faces = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
+    const Scene::CellularMode& mode = scene->cellular_mode.value();
+    const double k = mode.wavenumber, scale = scene->analytic_peak, tau = 1.0 / mode.decay_rate;
+    MesoSolver2DOptions opt = options(cfg);
+    opt.progress = progress;
+    for (const json& t : cfg.at("transient").at("t_over_tau")) opt.snapshot_times.push_back(t.get<double>() * tau);
+    std::vector<std::pair<double, Field>> reduced_snapshots;
+    opt.on_snapshot = [&](double t, const Eigen::VectorXd& vx, const Eigen::VectorXd& vy) {
+      reduced_snapshots.push_back({t, Field{vx, vy}});
+    };
+    const auto t_setup = std::chrono::steady_clock::now();
+    MesoSolver2D solver(*scene, *kernel, *deconv, *on_x_faces, *on_y_faces, opt);
+    const TensorMesh2D& mesh = solver.coarse_mesh();
+    if (scene->initial_velocity) {  // the average (2.9) of the lattice's initial velocities
+      const MesoFields f = average_particles(scene->make_particles(), scene->box, *kernel, mesh, AveragingRequest{});
+      solver.set_velocity(f.vx, f.vy);
+    }
+    const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count();
+
+    std::optional<StoredReference> direct;
+    if (cfg.at("reference").at("direct_sph").get<bool>()) {
+      const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("reference").at("solver"),
+                                     cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene->eta,
+                                     opt.snapshot_times};
+      direct = stored_direct_reference(request, *scene, *kernel, progress);
+    }
+    const MesoResult2D reduced = solver.run();
+
+    // The exact field and its average (each mode times the kernel's symbol at (k, k) / 2π) at the final time.
+    const Field unit = mode_field(mesh, k, 1.0), reduced_field{reduced.vx, reduced.vy};
+    const double e = kernel->symbol(Vec2(k, k) / (2.0 * M_PI));
+    const Field exact = mode_field(mesh, k, mode.amplitude(reduced.time)),
+                averaged = mode_field(mesh, k, e * mode.amplitude(reduced.time));
+    json errors = {{"vs_analytic", norms(reduced_field, exact, scale)},
+                   {"vs_averaged_analytic", norms(reduced_field, averaged, scale)}};
+    // The amplitude on the mode against the exact one, and the Landweber prediction e / (1 − (1 − e)^{n+1}) with
+    // e the kernel's symbol (continuum) and e_h the eigenvalue of the discrete operator at the mode.
+    json amplitude = {{"ratio", fitted_amplitude(reduced_field, unit) / mode.amplitude(reduced.time)}, {"e", e}};
+    const json& d = cfg.at("closure").at("deconvolver");
+    if (d.at("name") == "landweber" && d.at("rule") == "fixed") {
+      const int order = d.at("order").get<int>();
+      amplitude["landweber_prediction"] = e / (1 - std::pow(1 - e, order + 1));
+      if (opt.discretization == Discretization::coarse_coarse) {
+        Eigen::VectorXd m = unit.x;
+        const double eh = m.dot(solver.forward_operator().apply(m)) / m.squaredNorm();
+        amplitude["e_h"] = eh;
+        amplitude["landweber_prediction_discrete"] = eh / (1 - std::pow(1 - eh, order + 1));
+      }
+    }
+    errors["amplitude"] = amplitude;
+
+    json fields = {{"x", mesh.x.nodes()}, {"y", mesh.y.nodes()}, {"reduced", field_json(reduced_field)},
+                   {"averaged_analytic", field_json(averaged)}};
+    const long evaluations = reduced.quadrature_cost.evaluations;
+    json cost = {{"wall_seconds", reduced.wall_seconds},
+                 {"setup_seconds", setup_seconds},
+                 {"steps", reduced.steps},
+                 {"dt", reduced.dt},
+                 {"model_time", reduced.time},
+                 {"coarse_nodes", mesh.size()},
+                 {"deconvolution_seconds", reduced.deconvolution_seconds},
+                 {"deconvolution_matvecs", reduced.deconvolution_matvecs},
+                 {"quadrature_seconds", reduced.quadrature_seconds},
+                 {"quadrature_setup_seconds", reduced.quadrature_cost.setup_seconds},
+                 // both face meshes: two evaluations per step
+                 {"pair_forces_per_step",
+                  evaluations > 0 ? 2.0 * static_cast<double>(reduced.quadrature_cost.pair_forces) / evaluations : 0.0},
+                 {"bond_weights", reduced.quadrature_cost.bond_weights}};
+    json row;
+    row["status"] = row_status(reduced.status);
+    row["reduced_model"] = reduced.to_json();
+    if (direct) {
+      const auto average_of = [&](const ParticleSystem& ps) {
+        const MesoFields f = average_particles(ps, scene->box, *kernel, mesh, AveragingRequest{});
+        return Field{f.vx, f.vy};
+      };
+      const Field direct_field = average_of(direct->particles);
+      const double direct_time = direct->run.at("time").get<double>();
+      errors["vs_averaged_direct_sph"] = norms(reduced_field, direct_field, scale);
+      // The reference's own error: the averaged direct SPH against the averaged exact field at its final time.
+      errors["direct_sph_vs_averaged_analytic"] =
+          norms(direct_field, mode_field(mesh, k, e * mode.amplitude(direct_time)), scale);
+      fields["direct_average"] = field_json(direct_field);
+      row["direct_sph"] = direct->run;
+      json transient = json::array();
+      for (std::size_t s = 0; s < opt.snapshot_times.size(); ++s) {
+        const double t = opt.snapshot_times[s];
+        json snap = {{"t_over_tau", t / tau}, {"time", t}};
+        const Field avg_exact = mode_field(mesh, k, e * mode.amplitude(t));
+        if (s < reduced_snapshots.size() && s < direct->snapshots.size()) {
+          const Field& r = reduced_snapshots[s].second;
+          const Field dsnap = average_of(direct->snapshots[s].particles);
+          snap["reduced_vs_averaged_direct_sph"] = norms(r, dsnap, scale);
+          snap["reduced_vs_averaged_analytic"] = norms(r, avg_exact, scale);
+          snap["direct_sph_vs_averaged_analytic"] = norms(dsnap, avg_exact, scale);
+          snap["amplitude"] = {{"reduced", fitted_amplitude(r, unit)},
+                               {"direct_sph_average", fitted_amplitude(dsnap, unit)},
+                               {"averaged_analytic", e * mode.amplitude(t)}};
+        } else {
+          snap["status"] = "not reached (a run ended before this time)";
+        }
+        transient.push_back(snap);
+      }
+      if (!transient.empty()) row["transient"] = transient;
+      const double direct_seconds = direct->run.at("wall_seconds").get<double>();
+      cost["direct_sph_wall_seconds"] = direct_seconds;
+      const double total = setup_seconds + reduced.wall_seconds;
+      cost["speed_up"] = total > 0 ? direct_seconds / total : 0.0;
+    }
+    cost["peak_memory_mib"] = peak_memory_mib();
+    row["errors"] = errors;
+    row["cost"] = cost;
+    row["fields"] = fields;
+    return row;
+  }
+
+  // The direct reference dominates: particles n² times steps ~ n²; without it, the coarse quadrature's grid.
+  double expected_cost(const json& cfg) const override {
+    const double n = cfg.at("scene").value("n", 48);
+    return cfg.at("reference").at("direct_sph").get<bool>() ? n * n * n * n : n * n;
+  }
+
+ private:
+  static MesoSolver2DOptions options(const json& cfg) {
+    MesoSolver2DOptions o = meso_2d_options_from(cfg.at("solver"));
+    o.discretization =
+        parse_discretization(cfg.at("closure").at("discretization").get<std::string>(), "/closure/discretization");
+    o.noise_level = cfg.at("closure").at("noise_level").get<double>();
+    return o;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<ExperimentKind> make_reduced_model_2d_experiment() { return std::make_unique<ReducedModel2D>(); }
+
+}  // namespace closurelab

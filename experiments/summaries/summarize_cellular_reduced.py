@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Summary of a reduced_model_2d table (the two-dimensional reduced model of the cellular flow).
+
+Usage: python3 experiments/summaries/summarize_cellular_reduced.py TABLE.json OUT_PREFIX
+A table named pareto_*: the speed-against-error front (summarize_pareto.py) in OUT_PREFIX.md / .png. Otherwise:
+OUT_PREFIX.md, a row per cell (errors, the closure's amplitude against the Landweber prediction, the transient,
+the cost and the speed-up). Both draw, where matplotlib is available, OUT_PREFIX_fields.png: the velocity field of
+the averaged direct SPH and of the reduced model side by side, and their difference, for the most accurate cell
+at the finest resolution. Every number is read from the table.
+"""
+import sys
+
+from summary_util import fmt, get, load_table, pyplot_or_none
+
+import summarize_pareto
+
+
+def error(row, ref="vs_averaged_direct_sph"):
+    return get(row, "errors", ref, "all_nodes", "max_rel")
+
+
+def best_row(rows):
+    ok = [r for r in rows if r.get("status") == "ok" and error(r) is not None and "fields" in r]
+    if not ok:
+        return None
+    finest = max(r["params"]["scene"]["n"] for r in ok)
+    return min((r for r in ok if r["params"]["scene"]["n"] == finest), key=error)
+
+
+def fields_figure(row, path, title):
+    plt = pyplot_or_none()
+    if plt is None or row is None or "direct_average" not in row["fields"]:
+        return False
+    import numpy as np
+    f = row["fields"]
+    x, y = np.array(f["x"]), np.array(f["y"])
+    shape = (len(y), len(x))  # flat j * nx + i: rows are y
+
+    def grid(name, comp):
+        return np.array(f[name][comp]).reshape(shape)
+
+    dx, dy = grid("direct_average", "vx"), grid("direct_average", "vy")
+    rx, ry = grid("reduced", "vx"), grid("reduced", "vy")
+    speed_max = max(np.hypot(dx, dy).max(), np.hypot(rx, ry).max())
+    diff = np.hypot(rx - dx, ry - dy)
+    extent = [x[0] - 0.5 * (x[1] - x[0]), x[-1] + 0.5 * (x[1] - x[0]), y[0] - 0.5 * (y[1] - y[0]), y[-1] + 0.5 * (y[1] - y[0])]
+    fig, axes = plt.subplots(1, 3, figsize=(12.0, 4.0))
+    for ax, (u, v, name) in zip(axes[:2], [(dx, dy, "averaged direct SPH"), (rx, ry, "reduced model")]):
+        im = ax.imshow(np.hypot(u, v), origin="lower", extent=extent, vmin=0.0, vmax=speed_max, cmap="viridis")
+        ax.quiver(x, y, u, v, color="w", angles="xy", scale_units="xy", scale=speed_max / (0.9 * (x[1] - x[0])), width=0.005)
+        ax.set_title(f"{name}: |v|", fontsize=9)
+        fig.colorbar(im, ax=ax, fraction=0.046)
+    im = axes[2].imshow(diff / speed_max, origin="lower", extent=extent, cmap="magma")
+    axes[2].set_title("|v_reduced - v_direct| / max|v|", fontsize=9)
+    fig.colorbar(im, ax=axes[2], fraction=0.046)
+    for ax in axes:
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+        ax.set_aspect("equal")
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    return True
+
+
+def cell_table(table, path):
+    prov = table["provenance"]
+    lines = [f"# {table['experiment']}: the two-dimensional reduced model of the cellular flow\n",
+             f"{table['description']}\n",
+             f"From `{path}`; commit `{prov['git_commit']}`, {prov['compiler']}, {prov['build_type']}, "
+             f"{prov['threads']} thread(s), {prov['date_utc']}; command `{prov['command']}`; complete: "
+             f"{table['complete']}.\n",
+             "Errors: max over all coarse nodes of |v_reduced - v_ref| (vector norm) / the exact amplitude A; *peak*: the "
+             "paper's metric, the relative difference of the largest |v| against the same reference; *floor*: the "
+             "averaged direct SPH against the averaged exact field (the reference's own error). *amplitude*: the "
+             "reduced field's amplitude on the mode over A, with the Landweber prediction e/(1-(1-e)^(n+1)) where it "
+             "applies (e: the kernel's symbol at the mode). *transient*: the error against the averaged direct SPH at "
+             "t = tau/2, tau, 2 tau. *total s*: the reduced model's setup plus run; *speed-up*: the direct SPH's wall "
+             "time over that.\n",
+             "| cell | status | vs averaged direct SPH | peak | vs averaged exact | floor | amplitude | prediction | "
+             "transient | total s | steps | bond weights | direct SPH s | speed-up |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in table["rows"]:
+        c = r.get("cost", {})
+        if r.get("status") != "ok":
+            lines.append(f"| {r['label']} | {r.get('status')}: {(r.get('error') or '')[:80]} |" + " - |" * 12)
+            continue
+        transient = ", ".join(fmt(get(s, "reduced_vs_averaged_direct_sph", "all_nodes", "max_rel"))
+                              for s in r.get("transient", []))
+        total = c["wall_seconds"] + c["setup_seconds"]
+        lines.append(
+            f"| {r['label']} | ok | {fmt(error(r))} | "
+            f"{fmt(get(r, 'errors', 'vs_averaged_direct_sph', 'peak_relative_difference'))} | "
+            f"{fmt(error(r, 'vs_averaged_analytic'))} | {fmt(error(r, 'direct_sph_vs_averaged_analytic'))} | "
+            f"{fmt(get(r, 'errors', 'amplitude', 'ratio'), 5)} | "
+            f"{fmt(get(r, 'errors', 'amplitude', 'landweber_prediction'), 5)} | {transient or '-'} | {fmt(total)} | "
+            f"{fmt(c.get('steps'))} | {fmt(c.get('bond_weights'))} | {fmt(c.get('direct_sph_wall_seconds'))} | "
+            f"{fmt(c.get('speed_up'))} |")
+    return lines
+
+
+def main(path, prefix):
+    table = load_table(path)
+    if table["experiment"].startswith("pareto_"):
+        summarize_pareto.main(path, prefix)
+        lines = open(prefix + ".md").read().rstrip("\n").split("\n")
+    else:
+        lines = cell_table(table, path)
+    best = best_row(table["rows"])
+    if best is not None:
+        figure = prefix + "_fields.png"
+        drawn = fields_figure(best, figure, f"{table['experiment']}: {best['label']}")
+        lines.append(f"\nFields ({'`' + figure.split('/')[-1] + '`' if drawn else 'not drawn: no matplotlib'}): "
+                     f"the most accurate cell at the finest resolution, {best['label']}, error {fmt(error(best))} "
+                     "against the averaged direct SPH.")
+    open(prefix + ".md", "w").write("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:3])

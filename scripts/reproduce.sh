@@ -84,6 +84,9 @@ experiments/error_budget/fig4.json results/error_budget/fig4
 experiments/error_budget/two_phase_case3.json results/error_budget/two_phase_case3
 experiments/near_wall/fig2.json results/near_wall/fig2
 experiments/near_wall/two_phase.json results/near_wall/two_phase
+experiments/cellular/direct.json results/cellular/direct
+experiments/cellular/reduced.json results/cellular/reduced
+experiments/speed_vs_error/cellular.json results/speed_vs_error/cellular
 LIST
 fi
 

@@ -104,7 +104,6 @@ void check_meso_solver_2d(const Scene& scene, const AveragingKernel& kernel, con
 MesoSolver2D::MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, Deconvolver& deconvolver,
                            StressQuadrature& on_x_faces, StressQuadrature& on_y_faces, MesoSolver2DOptions options)
     : scene_(scene),
-      kernel_(kernel),
       deconvolver_(deconvolver),
       on_x_faces_(on_x_faces),
       on_y_faces_(on_y_faces),

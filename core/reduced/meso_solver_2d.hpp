@@ -98,7 +98,6 @@ class MesoSolver2D {
   bool deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std::string& issue);
 
   const Scene& scene_;
-  const AveragingKernel& kernel_;
   Deconvolver& deconvolver_;
   StressQuadrature &on_x_faces_, &on_y_faces_;
   MesoSolver2DOptions opt_;

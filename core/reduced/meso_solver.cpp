@@ -221,11 +221,28 @@ bool MesoSolver::rate(Eigen::VectorXd& dvdt, std::string& issue) {
   return true;
 }
 
+double coarse_time_step(double kappa, double rho, double spacing, double max_viscosity, double max_speed) {
+  double dt = rho * spacing * spacing / max_viscosity;           // (5.22)
+  if (max_speed > 0) dt = std::min(dt, spacing / max_speed);     // (5.21)
+  return kappa * dt;
+}
+
+bool coarse_state_ok(bool finite, double max_abs, double analytic_peak, double divergence_factor, std::string& issue) {
+  if (!finite) {
+    issue = "coarse velocity is not finite";
+    return false;
+  }
+  if (analytic_peak > 0 && max_abs > divergence_factor * analytic_peak) {
+    std::ostringstream os;
+    os << "diverged: max|v| = " << max_abs << " exceeds " << divergence_factor << " x the analytic peak";
+    issue = os.str();
+    return false;
+  }
+  return true;
+}
+
 double MesoSolver::time_step() const {
-  const double h = coarse_.spacing, vmax = v_.cwiseAbs().maxCoeff();
-  double dt = scene_.rho0 * h * h / scene_.max_viscosity();  // (5.22)
-  if (vmax > 0) dt = std::min(dt, h / vmax);                 // (5.21)
-  return opt_.kappa * dt;
+  return coarse_time_step(opt_.kappa, scene_.rho0, coarse_.spacing, scene_.max_viscosity(), v_.cwiseAbs().maxCoeff());
 }
 
 MesoResult MesoSolver::run() {
@@ -235,18 +252,9 @@ MesoResult MesoSolver::run() {
   model.step = [&](double dt, std::string& issue) { return step(dt, issue); };
   model.observe = [&] { return v_; };
   model.check_state = [&](std::string& issue) {
-    if (!v_.allFinite()) {
-      issue = "coarse velocity is not finite";
-      return false;
-    }
-    const double mag = v_.cwiseAbs().maxCoeff();
-    if (scene_.analytic_peak > 0 && mag > opt_.divergence_factor * scene_.analytic_peak) {
-      std::ostringstream os;
-      os << "diverged: max|v| = " << mag << " exceeds " << opt_.divergence_factor << " x the analytic peak";
-      issue = os.str();
-      return false;
-    }
-    return true;
+    const bool finite = v_.allFinite();
+    return coarse_state_ok(finite, finite ? v_.cwiseAbs().maxCoeff() : 0.0, scene_.analytic_peak,
+                           opt_.divergence_factor, issue);
   };
   if (opt_.on_snapshot) model.snapshot = [&](double t) { opt_.on_snapshot(t, reported_velocity()); };
   model.describe = [&] {

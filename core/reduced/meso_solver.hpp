@@ -130,6 +130,13 @@ struct MesoResult : ClosureRunResult {
   Eigen::VectorXd y, v;  // coarse nodes and v̄_x there
 };
 
+// The rules both reduced models (1D and 2D) step by: the time step (5.21)–(5.22),
+// κ · min(ρ Δ²/μ_max, Δ/|v|_max) (the second only for a moving state); and the state check, false with the
+// reason in `issue` when the state is not finite or its largest |v| exceeds divergence_factor × the analytic peak
+// (an unstable closure otherwise runs on with (5.21) shrinking the step without bound).
+double coarse_time_step(double kappa, double rho, double spacing, double max_viscosity, double max_speed);
+bool coarse_state_ok(bool finite, double max_abs, double analytic_peak, double divergence_factor, std::string& issue);
+
 // The solver section of a spec ("solver": {...}): its schema, defaults from MesoSolverOptions{} (one source;
 // meso_options_from(resolved defaults) == MesoSolverOptions{}, tested), and the options read from a resolved
 // section (the run-control parameters as core/base/time_loop.hpp declares them).

@@ -207,11 +207,9 @@ bool MesoSolver2D::step(double dt, std::string& issue) {
 }
 
 double MesoSolver2D::time_step() const {
-  const double h = std::min(coarse_.x.spacing, coarse_.y.spacing);
-  const double vmax = (vx_.array().square() + vy_.array().square()).sqrt().maxCoeff();
-  double dt = scene_.rho0 * h * h / scene_.max_viscosity();  // (5.22), as the 1D model takes it
-  if (vmax > 0) dt = std::min(dt, h / vmax);                          // (5.21)
-  return opt_.kappa * dt;
+  // (5.21)–(5.22) with the smaller spacing and the largest speed; ρ0 as the 1D model takes it.
+  return coarse_time_step(opt_.kappa, scene_.rho0, std::min(coarse_.x.spacing, coarse_.y.spacing),
+                          scene_.max_viscosity(), (vx_.array().square() + vy_.array().square()).sqrt().maxCoeff());
 }
 
 MesoResult2D MesoSolver2D::run() {
@@ -225,18 +223,9 @@ MesoResult2D MesoSolver2D::run() {
     return o;
   };
   model.check_state = [&](std::string& issue) {
-    if (!vx_.allFinite() || !vy_.allFinite()) {
-      issue = "coarse velocity is not finite";
-      return false;
-    }
-    const double mag = std::max(vx_.cwiseAbs().maxCoeff(), vy_.cwiseAbs().maxCoeff());
-    if (scene_.analytic_peak > 0 && mag > opt_.divergence_factor * scene_.analytic_peak) {
-      std::ostringstream os;
-      os << "diverged: max|v| = " << mag << " exceeds " << opt_.divergence_factor << " x the analytic peak";
-      issue = os.str();
-      return false;
-    }
-    return true;
+    const bool finite = vx_.allFinite() && vy_.allFinite();
+    return coarse_state_ok(finite, finite ? std::max(vx_.cwiseAbs().maxCoeff(), vy_.cwiseAbs().maxCoeff()) : 0.0,
+                           scene_.analytic_peak, opt_.divergence_factor, issue);
   };
   if (opt_.on_snapshot) model.snapshot = [&](double t) { opt_.on_snapshot(t, vx_, vy_); };
   model.describe = [&] {

@@ -86,14 +86,7 @@ class ReducedModel : public ExperimentKind {
       throw ConfigError(path + "/oracle", "an oracle needs the direct SPH reference (reference.direct_sph = true)");
     if (out["oracle"]["boundary"] != "none" && !scene->has_walls)
       throw ConfigError(path + "/oracle/boundary", "scene '" + scene->name + "' has no walls");
-    double previous = 0.0;
-    for (std::size_t k = 0; k < out["transient"]["t_star"].size(); ++k) {
-      const json& t = out["transient"]["t_star"][k];
-      const std::string where = path + "/transient/t_star/" + std::to_string(k);
-      if (!t.is_number() || !std::isfinite(t.get<double>()) || t.get<double>() <= previous)
-        throw ConfigError(where, "snapshot times must be finite numbers, positive and ascending");
-      previous = t.get<double>();
-    }
+    check_snapshot_times(out["transient"]["t_star"], path + "/transient/t_star");
     // Cheap structural checks now (coarse mesh, quadrature fit) so that a bad cell fails before any runs; the
     // strategies are set up once, when the cell runs.
     try {

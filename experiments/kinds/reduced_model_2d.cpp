@@ -94,14 +94,7 @@ class ReducedModel2D : public ExperimentKind {
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
     check_time_loop(out["reference"]["solver"], path + "/reference/solver");
     out["transient"] = resolve_section(cell, "transient", transient_schema(), path);
-    double previous = 0.0;
-    for (std::size_t k = 0; k < out["transient"]["t_over_tau"].size(); ++k) {
-      const json& t = out["transient"]["t_over_tau"][k];
-      if (!t.is_number() || !std::isfinite(t.get<double>()) || t.get<double>() <= previous)
-        throw ConfigError(path + "/transient/t_over_tau/" + std::to_string(k),
-                          "snapshot times must be finite numbers, positive and ascending");
-      previous = t.get<double>();
-    }
+    check_snapshot_times(out["transient"]["t_over_tau"], path + "/transient/t_over_tau");
     try {
       check_meso_solver_2d(*scene, *kernel, *reg.quadratures.create(out["quadrature"], "/quadrature"), options(out));
     } catch (const ConfigError& e) {

@@ -222,8 +222,8 @@ bool MesoSolver::rate(Eigen::VectorXd& dvdt, std::string& issue) {
 }
 
 double coarse_time_step(double kappa, double rho, double spacing, double max_viscosity, double max_speed) {
-  double dt = rho * spacing * spacing / max_viscosity;           // (5.22)
-  if (max_speed > 0) dt = std::min(dt, spacing / max_speed);     // (5.21)
+  double dt = rho * spacing * spacing / max_viscosity;        // (5.22)
+  if (max_speed > 0) dt = std::min(dt, spacing / max_speed);  // (5.21)
   return kappa * dt;
 }
 

@@ -37,9 +37,8 @@ json run_cellular_validation(const Scene& scene, const AveragingKernel& kernel, 
   using clock = std::chrono::steady_clock;
   const Scene::CellularMode& mode = scene.cellular_mode.value();
   const double k = mode.wavenumber, scale = scene.analytic_peak;
-  const int nodes = std::max(1, static_cast<int>(std::round(scene.box.lx / spacing)));
-  const TensorMesh2D mesh{UniformMesh1D::cell_centred(0.0, scene.box.lx, nodes, true),
-                          UniformMesh1D::cell_centred(0.0, scene.box.ly, nodes, true)};
+  const TensorMesh2D mesh = observe_mesh(scene, spacing);  // the doubly periodic box's tensor mesh
+  const int nodes = mesh.nx();
   const DirectReference direct = run_direct_reference(scene, kernel, opt, mesh);
   const ParticleSystem& ps = direct.particles;
   const SphRunResult& sph = direct.run;

@@ -62,6 +62,13 @@ BENCHMARK(Foundation_NeighbourSearch)->Args({192, 12})->Args({192, 192})->Unit(b
 // the 1- and 2-thread rows of one run compare.
 static void Foundation_SphStep(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(2)));
+  const PairKernelIsa isa = state.range(3) ? PairKernelIsa::avx2 : PairKernelIsa::baseline;
+  if (!pair_kernel_isa_available(isa)) {
+    state.SkipWithError("no AVX2 pair kernel in this build or CPU");
+    return;
+  }
+  const PairKernelIsa chosen = pair_kernel_isa();
+  set_pair_kernel_isa(isa);
   const auto scene = channel(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   ParticleSystem ps = scene->make_particles();
   SphEngine engine(*scene, ps);
@@ -71,9 +78,12 @@ static void Foundation_SphStep(benchmark::State& state) {
   state.counters["moving_particles"] = static_cast<double>(engine.moving().size());
   state.counters["pairs"] = static_cast<double>(engine.pair_count());
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(engine.moving().size()));
+  set_pair_kernel_isa(chosen);
 }
+// The last argument: the density pass's kernel loop compiled for AVX2 (1, where available) or the baseline (0).
 BENCHMARK(Foundation_SphStep)
-    ->ArgsProduct({{192}, {12, 192}, {1, 2}})
-    ->ArgNames({"n_y", "n_x", "threads"})
+    ->ArgsProduct({{192}, {12, 192}, {1, 2}, {1}})
+    ->Args({192, 192, 1, 0})
+    ->ArgNames({"n_y", "n_x", "threads", "avx2"})
     ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);

@@ -2,15 +2,22 @@
 // The direct SPH model: Newton's equations (2.1)–(2.3) with the pair force (5.1), Morris's viscous term
 // with the pair viscosity μ_ij (μ_i + μ_j, or the harmonic mean for unlike particles), the scene's equation of
 // state (weakly compressible, or van der Waals (7.1) with k_ij per pair), zero-velocity (5.3) or
-// ghost-velocity walls, and a body force. Symmetric pair evaluation over a Verlet pair list (cell-list search with a skin),
-// OpenMP over pairs with per-thread accumulators. Only the particles a scene needs are stepped: wall
-// particles farther than the interaction range from every fluid particle take no part.
-// The pair loops are branch-free on the pairs that dominate (fluid–fluid, and every pair under zero-velocity
-// walls): the kernel and w'/r come from r² in one pass (SmoothingKernel::w_and_dw_over_r), list pairs beyond
-// the support contribute zero instead of being skipped, the reciprocals 1/n are taken once per particle; only
-// the fluid–wall pairs of ghost-velocity walls take the general path (their ghost velocity).
+// ghost-velocity walls, and a body force. Symmetric pair evaluation over a Verlet pair list (cell-list search
+// with a skin), grouped by particle into rows and blocks (sph_engine.cpp), OpenMP over blocks with per-thread
+// accumulators. Only the particles a scene needs are stepped: wall particles farther than the interaction range
+// from every fluid particle take no part.
+// The density pass computes the kernel values of a block of listed pairs in one vectorized loop (w and w'/r from
+// r², SmoothingKernel::w_and_dw_over_r, without branches; compiled for AVX2 and the baseline on x86-64, same
+// bits, PairKernelIsa), then adds them row by row; the force pass sums each row's force on its particle in registers. List
+// pairs beyond the support contribute zero instead of being skipped; the reciprocals 1/n are taken once per
+// particle; only the fluid–wall pairs of ghost-velocity walls take the general path (their ghost velocity).
+#include <array>
 #include <cstdint>
+#include <string_view>
+#include <utility>
 #include <vector>
+
+#include "core/base/enum_names.hpp"
 
 #include "core/base/mesh.hpp"
 #include "core/sph/neighbour_search.hpp"
@@ -30,6 +37,24 @@ struct PairForce {
 struct SphPairInput {
   double p_over_n2, inv_n, vx, vy;
 };
+
+// The instruction set of the density pass's kernel loop: AVX2 where an x86-64 baseline build runs on a CPU that
+// has it, else the build's own. Both compute the same bits (no fused multiply-add); tests compare them.
+enum class PairKernelIsa { baseline, avx2 };
+
+template <>
+struct EnumNames<PairKernelIsa> {
+  static constexpr std::array<std::pair<PairKernelIsa, std::string_view>, 2> table{
+      {{PairKernelIsa::baseline, "baseline"}, {PairKernelIsa::avx2, "avx2"}}};
+};
+
+bool pair_kernel_isa_available(PairKernelIsa isa);
+PairKernelIsa pair_kernel_isa();
+// For tests and benchmarks: every engine's next density pass uses `isa`; std::invalid_argument where it is not
+// available.
+void set_pair_kernel_isa(PairKernelIsa isa);
+
+struct PairBlocks;  // the list's rows and blocks, as the pair passes read them (sph_engine.cpp)
 
 class SphEngine {
  public:
@@ -60,13 +85,14 @@ class SphEngine {
 
  private:
   void rebuild_pairs_if_needed();
+  void group_pairs_by_particle();
+  PairBlocks blocks() const;
   void compute_density();
-  template <SmoothingKernel::Type T>
-  void density_pairs(std::vector<double>& buf, std::size_t begin, std::size_t end);
-  void force_pairs(std::vector<double>& buf, std::size_t begin, std::size_t end) const;
+  // Thread t's share of the force pass (the rows of blocks nb·t/nt to nb·(t+1)/nt) into its accumulator.
+  void force_rows_of_thread(std::size_t t, std::size_t nt);
   double pressure(std::int32_t a) const;
-  // (5.1) for pair p of the list at the current densities, given the like-pair P/n² of its two particles.
-  Vec2 pair_force(std::size_t p, double p_over_n2_i, double p_over_n2_j) const;
+  // (5.1) for pair p = (i, j) of the list at the current densities, given the like-pair P/n² of its particles.
+  Vec2 pair_force(std::int32_t i, std::int32_t j, std::size_t p, double p_over_n2_i, double p_over_n2_j) const;
   // Relative velocity used by the viscous term of pair (a, b) (ghost velocities for fluid–wall pairs).
   Vec2 relative_velocity(std::int32_t a, std::int32_t b) const;
 
@@ -82,8 +108,11 @@ class SphEngine {
   std::vector<SphPairInput> pair_input_;
   bool one_phase_ = true;  // every particle of one phase: μ_ij = 2μ and no unlike-pair excess
   double inv_lx_ = 0.0, inv_ly_ = 0.0;
-  PairList pairs_;
-  std::vector<double> pair_dx_, pair_dy_, pair_f_;  // minimum-image q_i − q_j and w'(r)/r per pair
+  PairList pairs_;  // the Verlet list, grouped by the first particle (group_pairs_by_particle)
+  std::vector<std::int32_t> row_i_;
+  std::vector<std::uint32_t> row_begin_, block_row_;
+  std::vector<double> pair_dx_, pair_dy_, pair_f_;  // minimum-image q_i − q_j and w'(r)/r per listed pair
+  std::vector<std::vector<double>> thread_scratch_;  // a block's per-pair kernel values, per thread
   std::vector<std::vector<double>> thread_buf_;
   std::int64_t pair_evaluations_ = 0, list_rebuilds_ = 0;
   bool built_ = false;

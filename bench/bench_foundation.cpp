@@ -1,14 +1,14 @@
 // Micro-benchmarks of the foundation kernels: the bond integral (App. A), the cell-list neighbour
 // search, and one direct SPH step. Run: build/bench/closurelab_bench --benchmark_filter=Foundation
-// (set OMP_NUM_THREADS=1 for per-core figures; the SPH step sets its own thread count, its third argument). items_per_second is bond integrals / pairs found /
-// moving particle-steps per second.
+// (set OMP_NUM_THREADS=1 for per-core figures; the SPH step sets its own thread count, its third argument).
+// items_per_second is bond integrals / pairs found / moving particle-steps per second.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
 #include <random>
 
-#include "core/sph/neighbour_search.hpp"
 #include "core/base/registry.hpp"
+#include "core/sph/neighbour_search.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_engine.hpp"
 #include "strategies/kernels/gaussian_kernel.hpp"

@@ -89,8 +89,8 @@ template <SmoothingKernel::Type T>
 template <SmoothingKernel::Type T>
 void density_blocks(const SmoothingKernel kernel, const PeriodicBox box, const double* __restrict x,
                     const double* __restrict y, const PairBlocks& g, std::size_t b0, std::size_t b1,
-                    double* __restrict qx, double* __restrict qy, double* __restrict dw_over_r,
-                    double* __restrict w, double* __restrict n, [[maybe_unused]] PairKernelIsa isa) {
+                    double* __restrict qx, double* __restrict qy, double* __restrict dw_over_r, double* __restrict w,
+                    double* __restrict n, [[maybe_unused]] PairKernelIsa isa) {
   const double lx = box.lx, ly = box.ly;
   const double ilx = box.periodic_x ? 1.0 / lx : 0.0, ily = box.periodic_y ? 1.0 / ly : 0.0;
   for (std::size_t b = b0; b < b1; ++b) {
@@ -102,8 +102,7 @@ void density_blocks(const SmoothingKernel kernel, const PeriodicBox box, const d
                              dw_over_r + p0, w);
     else
 #endif
-      density_kernel<T>(kernel, lx, ly, ilx, ily, x, y, g.pi + p0, g.pj + p0, len, qx + p0, qy + p0,
-                        dw_over_r + p0, w);
+      density_kernel<T>(kernel, lx, ly, ilx, ily, x, y, g.pi + p0, g.pj + p0, len, qx + p0, qy + p0, dw_over_r + p0, w);
     for (std::size_t r = r0; r < r1; ++r) {
       double sum = 0.0;
       for (std::size_t p = g.row_begin[r], e = g.row_begin[r + 1]; p < e; ++p) {
@@ -173,8 +172,7 @@ PairKernelIsa pair_kernel_isa() { return chosen_isa().load(); }
 
 void set_pair_kernel_isa(PairKernelIsa isa) {
   if (!pair_kernel_isa_available(isa))
-    throw std::invalid_argument("set_pair_kernel_isa: this build or CPU has no " +
-                                name_of(isa) + " pair kernel");
+    throw std::invalid_argument("set_pair_kernel_isa: this build or CPU has no " + name_of(isa) + " pair kernel");
   chosen_isa().store(isa);
 }
 
@@ -237,7 +235,7 @@ void SphEngine::rebuild_pairs_if_needed() {
     const std::size_t m = moving_.size();
     const PeriodicBox& box = scene_.box;
     int need = 0;
-#pragma omp parallel for num_threads(static_cast<int>(thread_buf_.size())) schedule(static) reduction(| : need)
+#pragma omp parallel for num_threads(static_cast <int>(thread_buf_.size())) schedule(static) reduction(| : need)
     for (std::size_t k = 0; k < m; ++k) {
       const int a = moving_[k];
       double dx = ps_.x[a] - x_built_[a], dy = ps_.y[a] - y_built_[a];
@@ -311,7 +309,7 @@ void SphEngine::compute_density() {
   const PairBlocks g = blocks();
   const std::size_t nb = block_row_.size() - 1;
   const PairKernelIsa isa = pair_kernel_isa();
-#pragma omp parallel num_threads(static_cast<int>(thread_buf_.size()))
+#pragma omp parallel num_threads(static_cast <int>(thread_buf_.size()))
   {
     const std::size_t t = omp_get_thread_num(), nt = omp_get_num_threads();
     auto& buf = thread_buf_[t];
@@ -353,8 +351,7 @@ Vec2 SphEngine::pair_force(std::int32_t i, std::int32_t j, std::size_t p, double
 
 Vec2 SphEngine::relative_velocity(std::int32_t a, std::int32_t b) const {
   const bool fa = ps_.fixed[a], fb = ps_.fixed[b];
-  if (scene_.wall_model == WallModel::zero_velocity || fa == fb)
-    return {ps_.vx[a] - ps_.vx[b], ps_.vy[a] - ps_.vy[b]};
+  if (scene_.wall_model == WallModel::zero_velocity || fa == fb) return {ps_.vx[a] - ps_.vx[b], ps_.vy[a] - ps_.vy[b]};
   // Ghost velocity: the wall particle moves with −(d_wall / d_fluid) v_fluid, so that the velocity
   // continued across the wall surface vanishes on it.
   const int f = fa ? b : a, w = fa ? a : b;
@@ -367,9 +364,8 @@ Vec2 SphEngine::relative_velocity(std::int32_t a, std::int32_t b) const {
 }
 
 void SphEngine::force_rows_of_thread(std::size_t t, std::size_t nt) {
-  const ForceInputs in{pair_input_.data(),         mu_.data(),
-                       ps_.phase.data(),           scene_.pair_viscosity_mean,
-                       2.0 * unlike_excess_,       mu_.empty() ? 0.0 : mu_[0] + mu_[0]};
+  const ForceInputs in{pair_input_.data(),         mu_.data(),           ps_.phase.data(),
+                       scene_.pair_viscosity_mean, 2.0 * unlike_excess_, mu_.empty() ? 0.0 : mu_[0] + mu_[0]};
   const PairBlocks g = blocks();
   const std::size_t nb = block_row_.size() - 1;
   const std::size_t r0 = block_row_[nb * t / nt], r1 = block_row_[nb * (t + 1) / nt];
@@ -377,32 +373,41 @@ void SphEngine::force_rows_of_thread(std::size_t t, std::size_t nt) {
   const double *F = pair_f_.data(), *qx = pair_dx_.data(), *qy = pair_dy_.data();
   if (scene_.wall_model != WallModel::ghost_velocity) {
     if (one_phase_)
-      force_rows(g, r0, r1, [&](int i, int j, std::size_t p, double& fx, double& fy) {
-        force_pair<true>(in, i, j, F[p], qx[p], qy[p], fx, fy);
-      }, f);
+      force_rows(
+          g, r0, r1,
+          [&](int i, int j, std::size_t p, double& fx, double& fy) {
+            force_pair<true>(in, i, j, F[p], qx[p], qy[p], fx, fy);
+          },
+          f);
     else
-      force_rows(g, r0, r1, [&](int i, int j, std::size_t p, double& fx, double& fy) {
-        force_pair<false>(in, i, j, F[p], qx[p], qy[p], fx, fy);
-      }, f);
+      force_rows(
+          g, r0, r1,
+          [&](int i, int j, std::size_t p, double& fx, double& fy) {
+            force_pair<false>(in, i, j, F[p], qx[p], qy[p], fx, fy);
+          },
+          f);
     return;
   }
   // Ghost walls: fluid–wall pairs take their ghost velocity.
   const std::uint8_t* fixed = ps_.fixed.data();
-  force_rows(g, r0, r1, [&](int i, int j, std::size_t p, double& fx, double& fy) {
-    if (fixed[i] == fixed[j] || F[p] == 0.0) {
-      force_pair<false>(in, i, j, F[p], qx[p], qy[p], fx, fy);
-      return;
-    }
-    const Vec2 v = pair_force(i, j, p, pair_input_[i].p_over_n2, pair_input_[j].p_over_n2);
-    fx = v.x();
-    fy = v.y();
-  }, f);
+  force_rows(
+      g, r0, r1,
+      [&](int i, int j, std::size_t p, double& fx, double& fy) {
+        if (fixed[i] == fixed[j] || F[p] == 0.0) {
+          force_pair<false>(in, i, j, F[p], qx[p], qy[p], fx, fy);
+          return;
+        }
+        const Vec2 v = pair_force(i, j, p, pair_input_[i].p_over_n2, pair_input_[j].p_over_n2);
+        fx = v.x();
+        fy = v.y();
+      },
+      f);
 }
 
 void SphEngine::compute_accelerations() {
   compute_density();
   const std::size_t n = ps_.size(), na = active_.size(), m = moving_.size();
-#pragma omp parallel num_threads(static_cast<int>(thread_buf_.size()))
+#pragma omp parallel num_threads(static_cast <int>(thread_buf_.size()))
   {
     const std::size_t t = omp_get_thread_num(), nt = omp_get_num_threads();
     auto& buf = thread_buf_[t];
@@ -438,7 +443,7 @@ void SphEngine::step(double dt) {
   vhx_.resize(m);
   vhy_.resize(m);
   const PeriodicBox& box = scene_.box;
-#pragma omp parallel for num_threads(static_cast<int>(thread_buf_.size())) schedule(static)
+#pragma omp parallel for num_threads(static_cast <int>(thread_buf_.size())) schedule(static)
   for (std::size_t k = 0; k < m; ++k) {
     const int a = moving_[k];
     vhx_[k] = ps_.vx[a] + 0.5 * dt * ax_[a];
@@ -453,7 +458,7 @@ void SphEngine::step(double dt) {
     ps_.vy[a] = vhy_[k] + 0.5 * dt * ay_[a];
   }
   compute_accelerations();
-#pragma omp parallel for num_threads(static_cast<int>(thread_buf_.size())) schedule(static)
+#pragma omp parallel for num_threads(static_cast <int>(thread_buf_.size())) schedule(static)
   for (std::size_t k = 0; k < m; ++k) {
     const int a = moving_[k];
     ps_.vx[a] = vhx_[k] + 0.5 * dt * ax_[a];

@@ -8,8 +8,8 @@
 // from every fluid particle take no part.
 // The density pass computes the kernel values of a block of listed pairs in one vectorized loop (w and w'/r from
 // r², SmoothingKernel::w_and_dw_over_r, without branches; compiled for AVX2 and the baseline on x86-64, same
-// bits, PairKernelIsa), then adds them row by row; the force pass sums each row's force on its particle in registers. List
-// pairs beyond the support contribute zero instead of being skipped; the reciprocals 1/n are taken once per
+// bits, PairKernelIsa), then adds them row by row; the force pass sums each row's force on its particle in registers.
+// List pairs beyond the support contribute zero instead of being skipped; the reciprocals 1/n are taken once per
 // particle; only the fluid–wall pairs of ghost-velocity walls take the general path (their ghost velocity).
 #include <array>
 #include <cstdint>
@@ -111,7 +111,7 @@ class SphEngine {
   PairList pairs_;  // the Verlet list, grouped by the first particle (group_pairs_by_particle)
   std::vector<std::int32_t> row_i_;
   std::vector<std::uint32_t> row_begin_, block_row_;
-  std::vector<double> pair_dx_, pair_dy_, pair_f_;  // minimum-image q_i − q_j and w'(r)/r per listed pair
+  std::vector<double> pair_dx_, pair_dy_, pair_f_;   // minimum-image q_i − q_j and w'(r)/r per listed pair
   std::vector<std::vector<double>> thread_scratch_;  // a block's per-pair kernel values, per thread
   std::vector<std::vector<double>> thread_buf_;
   std::int64_t pair_evaluations_ = 0, list_rebuilds_ = 0;

@@ -22,8 +22,7 @@ namespace {
 class ReferenceSph {
  public:
   ReferenceSph(const Scene& s, ParticleSystem& ps)
-      : s_(s), ps_(ps), w_(s.smoothing_kernel()), n_(ps.size()), ax_(ps.size()),
-        ay_(ps.size()) {}
+      : s_(s), ps_(ps), w_(s.smoothing_kernel()), n_(ps.size()), ax_(ps.size()), ay_(ps.size()) {}
 
   void accelerations() {
     const std::size_t N = ps_.size();
@@ -47,8 +46,8 @@ class ReferenceSph {
           const double P = s_.van_der_waals ? s_.van_der_waals->pressure(n_[c], k) : s_.pressure(n_[c], ps_.mass[c]);
           return P / (n_[c] * n_[c]);
         };
-        const double mu = pair_viscosity(s_.phase_viscosity[ps_.phase[a]], s_.phase_viscosity[ps_.phase[b]],
-                                         s_.pair_viscosity_mean);
+        const double mu =
+            pair_viscosity(s_.phase_viscosity[ps_.phase[a]], s_.phase_viscosity[ps_.phase[b]], s_.pair_viscosity_mean);
         const Vec2 f = sph_pair_force(p_over_n2(a), p_over_n2(b), mu, n_[a], n_[b], w_.dw(r) / r, q, velocity(a, b));
         fx[a] += f.x(), fy[a] += f.y(), fx[b] -= f.x(), fy[b] -= f.y();
       }
@@ -114,7 +113,8 @@ Deviation run_both(const json& scene_params, int steps) {
   for (std::size_t p = 0; p < a.size(); ++p) {
     if (a.fixed[p]) continue;
     vmax = std::max(vmax, std::hypot(b.vx[p], b.vy[p]));
-    d.position = std::max(d.position, std::hypot(scene->box.wrap_dx(a.x[p] - b.x[p]), scene->box.wrap_dy(a.y[p] - b.y[p])));
+    d.position =
+        std::max(d.position, std::hypot(scene->box.wrap_dx(a.x[p] - b.x[p]), scene->box.wrap_dy(a.y[p] - b.y[p])));
     d.velocity = std::max(d.velocity, std::hypot(a.vx[p] - b.vx[p], a.vy[p] - b.vy[p]));
   }
   EXPECT_GT(vmax, 0.0);
@@ -141,8 +141,12 @@ TEST(SphEngineReference, ChannelZeroVelocityWallsQuintic) {
 }
 
 TEST(SphEngineReference, ChannelGhostVelocityWallsWendland) {
-  const Deviation d = run_both(json{{"name", "poiseuille-periodic"}, {"n_y", 24}, {"wall_model", "ghost_velocity"},
-                                    {"ghost_beta_max", 1.5}, {"smoothing_kernel", "wendland_c2"}, {"h_over_dx", 1.3}},
+  const Deviation d = run_both(json{{"name", "poiseuille-periodic"},
+                                    {"n_y", 24},
+                                    {"wall_model", "ghost_velocity"},
+                                    {"ghost_beta_max", 1.5},
+                                    {"smoothing_kernel", "wendland_c2"},
+                                    {"h_over_dx", 1.3}},
                                300);
   EXPECT_LT(d.position, kTolerance);
   EXPECT_LT(d.velocity, kTolerance);
@@ -168,11 +172,14 @@ TEST(SphEngineReference, LayeredTwoPhaseHarmonicMean) {
 TEST(SphEngineVectorKernels, Avx2AndBaselineGiveTheSameBits) {
   if (!pair_kernel_isa_available(PairKernelIsa::avx2)) GTEST_SKIP() << "no AVX2 pair kernel in this build or CPU";
   const PairKernelIsa chosen = pair_kernel_isa();
-  for (const json& params :
-       {json{{"name", "poiseuille-uniform"}, {"n_y", 24}},
-        json{{"name", "poiseuille-periodic"}, {"n_y", 24}, {"wall_model", "ghost_velocity"}, {"ghost_beta_max", 1.5},
-             {"smoothing_kernel", "wendland_c2"}, {"h_over_dx", 1.3}},
-        json{{"name", "kolmogorov"}, {"n_y", 24}}}) {
+  for (const json& params : {json{{"name", "poiseuille-uniform"}, {"n_y", 24}},
+                             json{{"name", "poiseuille-periodic"},
+                                  {"n_y", 24},
+                                  {"wall_model", "ghost_velocity"},
+                                  {"ghost_beta_max", 1.5},
+                                  {"smoothing_kernel", "wendland_c2"},
+                                  {"h_over_dx", 1.3}},
+                             json{{"name", "kolmogorov"}, {"n_y", 24}}}) {
     const auto scene = builtin_registry().scenes.create(params, "/scene");
     std::vector<ParticleSystem> runs;
     for (const PairKernelIsa isa : {PairKernelIsa::baseline, PairKernelIsa::avx2}) {

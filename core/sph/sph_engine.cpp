@@ -1,180 +1,17 @@
-// The direct SPH engine. Over 300 lines: the two pair passes, their per-particle steps and the list upkeep share
-// the engine's state and are kept together.
+// The direct SPH engine: its state, the list upkeep (search, grouping by particle), the per-particle steps of the
+// two pair passes and the integrator; the pair loops themselves are in sph_pair_passes.hpp.
 #include "core/sph/sph_engine.hpp"
 
 #include <omp.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <stdexcept>
 
 #include "core/base/errors.hpp"
 #include "core/sph/sph_pair_force.hpp"
+#include "core/sph/sph_pair_passes.hpp"
 
 namespace closurelab {
-
-// The Verlet list as the passes read it: pairs (i, j), i < j, grouped by i into rows (j ascending), rows into
-// blocks of about 256 pairs, the unit of the passes and of their threads.
-struct PairBlocks {
-  const std::int32_t *pi, *pj;  // the listed pairs, grouped by i
-  const std::int32_t* row_i;    // row r: particle i of the listed pairs [row_begin[r], row_begin[r + 1])
-  const std::uint32_t* row_begin;
-  const std::uint32_t* block_row;  // block b: rows [block_row[b], block_row[b + 1])
-};
-
-namespace {
-
-// A second compilation of the density kernel loop for AVX2, chosen at run time, where the baseline lacks it.
-#if defined(__x86_64__) && !defined(__AVX2__)
-#define CLOSURELAB_AVX2_CLONE 1
-#else
-#define CLOSURELAB_AVX2_CLONE 0
-#endif
-
-std::atomic<PairKernelIsa>& chosen_isa() {
-  static std::atomic<PairKernelIsa> isa{[] {
-#if CLOSURELAB_AVX2_CLONE
-    if (__builtin_cpu_supports("avx2")) return PairKernelIsa::avx2;
-#endif
-    return PairKernelIsa::baseline;
-  }()};
-  return isa;
-}
-
-// Minimum image along a periodic axis, d − L rint(d/L), with rint as the round-to-nearest shift by 1.5·2⁵²
-// (exact for |d/L| < 2⁵¹) and 1/L precomputed: no library call in the pair loop. For the listed pairs
-// (|d| far from L/2) it equals PeriodicBox::wrap_dx bitwise. With 1/L = 0 (an axis that is not periodic) it
-// returns d unchanged: no branch.
-inline double wrap(double d, double len, double inv_len) {
-  constexpr double shift = 6755399441055744.0;
-  const double k = (d * inv_len + shift) - shift;
-  return d - len * k;
-}
-
-// A block's listed pairs: q_i − q_j and w'/r per pair into the list's arrays, w into the block's scratch; no
-// store to a particle, so the compiler vectorizes it (gathers of the positions; the square root, division and
-// max of several pairs in one vector register).
-template <SmoothingKernel::Type T>
-inline void density_kernel(const SmoothingKernel kernel, double lx, double ly, double ilx, double ily,
-                           const double* __restrict x, const double* __restrict y, const std::int32_t* __restrict pi,
-                           const std::int32_t* __restrict pj, std::size_t len, double* __restrict qx,
-                           double* __restrict qy, double* __restrict dw_over_r, double* __restrict w) {
-#pragma omp simd
-  for (std::size_t k = 0; k < len; ++k) {
-    const int i = pi[k], j = pj[k];
-    const double dx = wrap(x[i] - x[j], lx, ilx), dy = wrap(y[i] - y[j], ly, ily);
-    qx[k] = dx;
-    qy[k] = dy;
-    kernel.w_and_dw_over_r<T>(dx * dx + dy * dy, w[k], dw_over_r[k]);
-  }
-}
-
-#if CLOSURELAB_AVX2_CLONE
-// The same loop compiled for AVX2 (four pairs per vector). AVX2 without FMA: every operation is rounded as in the
-// baseline, so both give the same bits (test SphEngineVectorKernels).
-template <SmoothingKernel::Type T>
-[[gnu::target("avx2")]] void density_kernel_avx2(const SmoothingKernel kernel, double lx, double ly, double ilx,
-                                                 double ily, const double* __restrict x, const double* __restrict y,
-                                                 const std::int32_t* __restrict pi, const std::int32_t* __restrict pj,
-                                                 std::size_t len, double* __restrict qx, double* __restrict qy,
-                                                 double* __restrict dw_over_r, double* __restrict w) {
-  density_kernel<T>(kernel, lx, ly, ilx, ily, x, y, pi, pj, len, qx, qy, dw_over_r, w);
-}
-#endif
-
-// The density pass over blocks [b0, b1): per block the kernel loop, then row by row w added to the densities in
-// n: particle i's sum kept in a register over its row, only j's scattered (a pair-by-pair scatter chains through
-// memory whenever consecutive pairs share a particle). Listed pairs beyond the support give w = w'/r = 0.
-template <SmoothingKernel::Type T>
-void density_blocks(const SmoothingKernel kernel, const PeriodicBox box, const double* __restrict x,
-                    const double* __restrict y, const PairBlocks& g, std::size_t b0, std::size_t b1,
-                    double* __restrict qx, double* __restrict qy, double* __restrict dw_over_r, double* __restrict w,
-                    double* __restrict n, [[maybe_unused]] PairKernelIsa isa) {
-  const double lx = box.lx, ly = box.ly;
-  const double ilx = box.periodic_x ? 1.0 / lx : 0.0, ily = box.periodic_y ? 1.0 / ly : 0.0;
-  for (std::size_t b = b0; b < b1; ++b) {
-    const std::size_t r0 = g.block_row[b], r1 = g.block_row[b + 1];
-    const std::size_t p0 = g.row_begin[r0], len = g.row_begin[r1] - p0;
-#if CLOSURELAB_AVX2_CLONE
-    if (isa == PairKernelIsa::avx2)
-      density_kernel_avx2<T>(kernel, lx, ly, ilx, ily, x, y, g.pi + p0, g.pj + p0, len, qx + p0, qy + p0,
-                             dw_over_r + p0, w);
-    else
-#endif
-      density_kernel<T>(kernel, lx, ly, ilx, ily, x, y, g.pi + p0, g.pj + p0, len, qx + p0, qy + p0, dw_over_r + p0, w);
-    for (std::size_t r = r0; r < r1; ++r) {
-      double sum = 0.0;
-      for (std::size_t p = g.row_begin[r], e = g.row_begin[r + 1]; p < e; ++p) {
-        sum += w[p - p0];
-        n[g.pj[p]] += w[p - p0];
-      }
-      n[g.row_i[r]] += sum;
-    }
-  }
-}
-
-// Inputs of the force pass.
-struct ForceInputs {
-  const SphPairInput* s;
-  const double* mu;
-  const int* phase;
-  PairViscosityMean mean;
-  double unlike;     // added to P_i/n_i² + P_j/n_j² of an unlike pair: twice the excess of (7.1)
-  double mu_single;  // μ_ij of a one-phase scene (2μ, as pair_viscosity gives for like particles)
-};
-
-// (5.1) for pair (i, j) with relative velocity v_i − v_j: the force on i. OnePhase: every pair is a like pair.
-template <bool OnePhase>
-inline void force_pair(const ForceInputs& in, int i, int j, double F, double qx, double qy, double& fx, double& fy) {
-  const SphPairInput &a = in.s[i], &b = in.s[j];
-  double p_sum = a.p_over_n2 + b.p_over_n2, mu_ij = in.mu_single;
-  if constexpr (!OnePhase) {
-    p_sum += in.phase[i] != in.phase[j] ? in.unlike : 0.0;
-    mu_ij = pair_viscosity(in.mu[i], in.mu[j], in.mean);
-  }
-  sph_pair_force(p_sum, mu_ij * (a.inv_n * b.inv_n), F, qx, qy, a.vx - b.vx, a.vy - b.vy, fx, fy);
-}
-
-// The force pass over rows [r0, r1): the force on i of each listed pair from `pair` (i, j, p) -> (fx, fy), summed
-// over the row in registers, its opposite added to each j.
-template <class PairForceOnI>
-void force_rows(const PairBlocks& g, std::size_t r0, std::size_t r1, PairForceOnI pair, double* __restrict f) {
-  for (std::size_t r = r0; r < r1; ++r) {
-    const int i = g.row_i[r];
-    double sx = 0.0, sy = 0.0;
-    for (std::size_t p = g.row_begin[r], e = g.row_begin[r + 1]; p < e; ++p) {
-      const int j = g.pj[p];
-      double fx, fy;
-      pair(i, j, p, fx, fy);
-      sx += fx;
-      sy += fy;
-      f[2 * j] -= fx;
-      f[2 * j + 1] -= fy;
-    }
-    f[2 * i] += sx;
-    f[2 * i + 1] += sy;
-  }
-}
-
-}  // namespace
-
-bool pair_kernel_isa_available(PairKernelIsa isa) {
-#if CLOSURELAB_AVX2_CLONE
-  if (isa == PairKernelIsa::avx2) return __builtin_cpu_supports("avx2");
-#else
-  if (isa == PairKernelIsa::avx2) return false;
-#endif
-  return true;
-}
-
-PairKernelIsa pair_kernel_isa() { return chosen_isa().load(); }
-
-void set_pair_kernel_isa(PairKernelIsa isa) {
-  if (!pair_kernel_isa_available(isa))
-    throw std::invalid_argument("set_pair_kernel_isa: this build or CPU has no " + name_of(isa) + " pair kernel");
-  chosen_isa().store(isa);
-}
 
 SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
     : scene_(scene), ps_(particles), w_(scene.smoothing_kernel()) {
@@ -239,8 +76,8 @@ void SphEngine::rebuild_pairs_if_needed() {
     for (std::size_t k = 0; k < m; ++k) {
       const int a = moving_[k];
       double dx = ps_.x[a] - x_built_[a], dy = ps_.y[a] - y_built_[a];
-      if (box.periodic_x) dx = wrap(dx, box.lx, inv_lx_);
-      if (box.periodic_y) dy = wrap(dy, box.ly, inv_ly_);
+      if (box.periodic_x) dx = pair_passes::wrap(dx, box.lx, inv_lx_);
+      if (box.periodic_y) dy = pair_passes::wrap(dy, box.ly, inv_ly_);
       need |= dx * dx + dy * dy > limit2 ? 1 : 0;
     }
     if (!need) return;
@@ -317,13 +154,13 @@ void SphEngine::compute_density() {
     const std::size_t b0 = nb * t / nt, b1 = nb * (t + 1) / nt;
     double* w = thread_scratch_[t].data();
     if (quintic)
-      density_blocks<SmoothingKernel::Type::quintic>(w_, scene_.box, ps_.x.data(), ps_.y.data(), g, b0, b1,
-                                                     pair_dx_.data(), pair_dy_.data(), pair_f_.data(), w, buf.data(),
-                                                     isa);
+      pair_passes::density_blocks<SmoothingKernel::Type::quintic>(w_, scene_.box, ps_.x.data(), ps_.y.data(), g, b0, b1,
+                                                                  pair_dx_.data(), pair_dy_.data(), pair_f_.data(), w,
+                                                                  buf.data(), isa);
     else
-      density_blocks<SmoothingKernel::Type::wendland_c2>(w_, scene_.box, ps_.x.data(), ps_.y.data(), g, b0, b1,
-                                                         pair_dx_.data(), pair_dy_.data(), pair_f_.data(), w,
-                                                         buf.data(), isa);
+      pair_passes::density_blocks<SmoothingKernel::Type::wendland_c2>(w_, scene_.box, ps_.x.data(), ps_.y.data(), g, b0,
+                                                                      b1, pair_dx_.data(), pair_dy_.data(),
+                                                                      pair_f_.data(), w, buf.data(), isa);
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (std::size_t k = 0; k < na; ++k) {
@@ -364,8 +201,9 @@ Vec2 SphEngine::relative_velocity(std::int32_t a, std::int32_t b) const {
 }
 
 void SphEngine::force_rows_of_thread(std::size_t t, std::size_t nt) {
-  const ForceInputs in{pair_input_.data(),         mu_.data(),           ps_.phase.data(),
-                       scene_.pair_viscosity_mean, 2.0 * unlike_excess_, mu_.empty() ? 0.0 : mu_[0] + mu_[0]};
+  const pair_passes::ForceInputs in{pair_input_.data(),   mu_.data(),
+                                    ps_.phase.data(),     scene_.pair_viscosity_mean,
+                                    2.0 * unlike_excess_, mu_.empty() ? 0.0 : mu_[0] + mu_[0]};
   const PairBlocks g = blocks();
   const std::size_t nb = block_row_.size() - 1;
   const std::size_t r0 = block_row_[nb * t / nt], r1 = block_row_[nb * (t + 1) / nt];
@@ -373,28 +211,28 @@ void SphEngine::force_rows_of_thread(std::size_t t, std::size_t nt) {
   const double *F = pair_f_.data(), *qx = pair_dx_.data(), *qy = pair_dy_.data();
   if (scene_.wall_model != WallModel::ghost_velocity) {
     if (one_phase_)
-      force_rows(
+      pair_passes::force_rows(
           g, r0, r1,
           [&](int i, int j, std::size_t p, double& fx, double& fy) {
-            force_pair<true>(in, i, j, F[p], qx[p], qy[p], fx, fy);
+            pair_passes::force_pair<true>(in, i, j, F[p], qx[p], qy[p], fx, fy);
           },
           f);
     else
-      force_rows(
+      pair_passes::force_rows(
           g, r0, r1,
           [&](int i, int j, std::size_t p, double& fx, double& fy) {
-            force_pair<false>(in, i, j, F[p], qx[p], qy[p], fx, fy);
+            pair_passes::force_pair<false>(in, i, j, F[p], qx[p], qy[p], fx, fy);
           },
           f);
     return;
   }
   // Ghost walls: fluid–wall pairs take their ghost velocity.
   const std::uint8_t* fixed = ps_.fixed.data();
-  force_rows(
+  pair_passes::force_rows(
       g, r0, r1,
       [&](int i, int j, std::size_t p, double& fx, double& fy) {
         if (fixed[i] == fixed[j] || F[p] == 0.0) {
-          force_pair<false>(in, i, j, F[p], qx[p], qy[p], fx, fy);
+          pair_passes::force_pair<false>(in, i, j, F[p], qx[p], qy[p], fx, fy);
           return;
         }
         const Vec2 v = pair_force(i, j, p, pair_input_[i].p_over_n2, pair_input_[j].p_over_n2);

@@ -21,7 +21,10 @@ void log_line(const std::string& line) {
 
 json compute_cell(const CellTask& task, const Registry& registry, json provenance, int threads,
                   const RankGroup& group) {
-  const std::string tag = "[" + task.at("experiment").get<std::string>() + "] ";
+  // Appended rather than "[" + name: GCC 12 reports a false -Wrestrict on a literal + std::string&& here.
+  std::string tag = "[";
+  tag += task.at("experiment").get<std::string>();
+  tag += "] ";
   const std::string label = task.at("label").get<std::string>();
   const std::string where = group.size() > 1 ? " on rank " + std::to_string(group.rank()) : "";
   const std::string cell = "cell " + std::to_string(task.at("index").get<std::size_t>() + 1) + "/" +

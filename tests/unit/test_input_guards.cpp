@@ -31,7 +31,7 @@ fs::path scratch(const std::string& name, const std::string& text) {
 
 TEST(IntegerParams, ValuesBeyondTheReadTypeAreRefusedWithThePath) {
   const ParamSchema s{integer_param("steady_window", 1000, "window", 1, {})};
-  for (const json v : {json(4294967296LL), json(2147483648LL), json(18446744073709551615ULL)}) {
+  for (const json& v : {json(4294967296LL), json(2147483648LL), json(18446744073709551615ULL)}) {
     const std::string e = config_error([&] { resolve_params(json{{"steady_window", v}}, s, "/solver"); });
     EXPECT_NE(e.find("/solver/steady_window"), std::string::npos) << e;
     EXPECT_NE(e.find("32-bit"), std::string::npos) << e;

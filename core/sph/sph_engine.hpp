@@ -3,7 +3,7 @@
 // with the pair viscosity μ_ij (μ_i + μ_j, or the harmonic mean for unlike particles), the scene's equation of
 // state (weakly compressible, or van der Waals (7.1) with k_ij per pair), zero-velocity (5.3) or
 // ghost-velocity walls, and a body force. Symmetric pair evaluation over a Verlet pair list (cell-list search
-// with a skin), grouped by particle into rows and blocks (sph_engine.cpp), OpenMP over blocks with per-thread
+// with a skin), grouped by particle into rows and blocks (sph_pair_passes.hpp), OpenMP over blocks with per-thread
 // accumulators. Only the particles a scene needs are stepped: wall particles farther than the interaction range
 // from every fluid particle take no part.
 // The density pass computes the kernel values of a block of listed pairs in one vectorized loop (w and w'/r from
@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "core/base/enum_names.hpp"
-
 #include "core/base/mesh.hpp"
 #include "core/sph/neighbour_search.hpp"
 #include "core/sph/scene.hpp"
@@ -54,7 +53,7 @@ PairKernelIsa pair_kernel_isa();
 // available.
 void set_pair_kernel_isa(PairKernelIsa isa);
 
-struct PairBlocks;  // the list's rows and blocks, as the pair passes read them (sph_engine.cpp)
+struct PairBlocks;  // the list's rows and blocks, as the pair passes read them (sph_pair_passes.hpp)
 
 class SphEngine {
  public:

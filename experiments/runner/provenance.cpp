@@ -14,6 +14,7 @@
 
 #include "build_info.hpp"
 #include "core/base/errors.hpp"
+#include "core/sph/sph_engine.hpp"
 
 namespace closurelab {
 
@@ -36,6 +37,7 @@ json provenance(const std::string& command_line) {
           {"date_utc", date},
           {"host", host},
           {"threads", omp_get_max_threads()},
+          {"sph_pair_kernel", name_of(pair_kernel_isa())},  // same bits either way (SphEngineVectorKernels)
           {"command", command_line}};
 }
 

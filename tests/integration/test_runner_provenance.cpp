@@ -36,9 +36,13 @@ TEST(RunnerProvenance, RowsKeepTheirRunAndACachedRerunChangesNothing) {
   std::string commit;
   for (const json& row : t1["rows"]) {
     const json& p = row.at("provenance");
-    for (const char* key : {"git_commit", "dirty", "compiler", "cxx_flags", "build_type", "date_utc", "host", "threads", "command"})
+    for (const char* key : {"git_commit", "dirty", "compiler", "cxx_flags", "build_type", "date_utc", "host", "threads",
+                            "sph_pair_kernel", "command"})
       EXPECT_TRUE(p.contains(key)) << key;
     EXPECT_EQ(p["git_commit"].get<std::string>().find("-dirty"), std::string::npos);  // the flag says it
+    // The code-generation options of every target are recorded with the build type's flags.
+    EXPECT_NE(p["cxx_flags"].get<std::string>().find("-fno-trapping-math"), std::string::npos) << p["cxx_flags"];
+    EXPECT_TRUE(p["sph_pair_kernel"] == "baseline" || p["sph_pair_kernel"] == "avx2") << p["sph_pair_kernel"];
     commit = p["git_commit"].get<std::string>();
   }
   // The header comes from the rows only: no date of its own, the rows' commits.
@@ -75,14 +79,16 @@ TEST(RunnerProvenance, RowsKeepTheirRunAndACachedRerunChangesNothing) {
 
   // The summary names both commits and marks the dirty row; regenerated after another cached run, it is
   // byte-identical, and so is the table.
-  const std::string summarize = "python3 " + std::string(CLOSURELAB_SOURCE_DIR) + "/experiments/summaries/summarize.py " +
-                                table_file.string() + " " + (work / "summary").string();
+  const std::string summarize = "python3 " + std::string(CLOSURELAB_SOURCE_DIR) +
+                                "/experiments/summaries/summarize.py " + table_file.string() + " " +
+                                (work / "summary").string();
   const CliOutcome s1 = run_shell(work, summarize);
   ASSERT_EQ(s1.code, 0) << s1.err;
   const std::string md1 = read_text(work / "summary" / "summary.md");
   const std::set<std::string> both{"0123456789ab", commit};
   const std::string commits = *both.begin() + ", " + *both.rbegin();
-  EXPECT_NE(md1.find(commits + " (" + std::to_string(dirty_rows) + " row(s) from a dirty build)"), std::string::npos) << md1;
+  EXPECT_NE(md1.find(commits + " (" + std::to_string(dirty_rows) + " row(s) from a dirty build)"), std::string::npos)
+      << md1;
   EXPECT_NE(md1.find("[dirty build]"), std::string::npos) << md1;
   ASSERT_EQ(run_closurelab(work, run).code, 0);
   EXPECT_EQ(read_text(table_file), bytes3);

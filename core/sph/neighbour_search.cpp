@@ -1,5 +1,6 @@
 #include "core/sph/neighbour_search.hpp"
 
+#include <algorithm>
 #include <numeric>
 
 namespace closurelab {
@@ -26,7 +27,8 @@ CellGrid make_cell_grid(const ParticleSystem& ps, const std::vector<std::int32_t
   auto axis = [radius](double lo, double hi, bool periodic, const char* name, double& origin, double& size, int& n) {
     n = std::max(1, static_cast<int>(std::floor((hi - lo) / radius)));
     if (periodic && n < 3)
-      throw ConfigError("", std::string("periodic ") + name + "-extent holds fewer than 3 interaction radii; widen the domain");
+      throw ConfigError(
+          "", std::string("periodic ") + name + "-extent holds fewer than 3 interaction radii; widen the domain");
     origin = lo;
     size = (hi - lo) / n;
     if (!(size > 0)) size = radius, n = 1;
@@ -43,6 +45,39 @@ void sort_by_cell(const ParticleSystem& ps, std::vector<std::int32_t>& subset, c
   std::vector<std::int64_t> key(ps.size(), 0);
   for (int a : subset) key[a] = static_cast<std::int64_t>(g.cell_y(ps.y[a])) * g.nx + g.cell_x(ps.x[a]);
   std::stable_sort(subset.begin(), subset.end(), [&](int a, int b) { return key[a] < key[b]; });
+}
+
+GroupedPairList group_by_first_particle(PairList list, std::size_t n_particles, std::size_t block_pairs) {
+  const std::size_t np = list.size(), n = n_particles;
+  std::vector<std::uint32_t> begin(n + 1, 0);
+  for (std::size_t p = 0; p < np; ++p) ++begin[list.i[p] + 1];
+  for (std::size_t a = 0; a < n; ++a) begin[a + 1] += begin[a];
+  GroupedPairList g;
+  g.pairs.i.resize(np);
+  g.pairs.j.resize(np);
+  std::vector<std::uint32_t> next(begin.begin(), begin.end() - 1);
+  for (std::size_t p = 0; p < np; ++p) {
+    const std::uint32_t q = next[list.i[p]]++;
+    g.pairs.i[q] = list.i[p];
+    g.pairs.j[q] = list.j[p];
+  }
+  g.block_row.assign(1, 0);
+  std::size_t block_start = 0;
+  for (std::size_t a = 0; a < n; ++a) {
+    if (begin[a + 1] == begin[a]) continue;
+    std::sort(g.pairs.j.begin() + begin[a], g.pairs.j.begin() + begin[a + 1]);
+    if (begin[a] - block_start >= block_pairs) {
+      g.block_row.push_back(static_cast<std::uint32_t>(g.row_i.size()));
+      g.longest_block = std::max<std::size_t>(g.longest_block, begin[a] - block_start);
+      block_start = begin[a];
+    }
+    g.row_i.push_back(static_cast<std::int32_t>(a));
+    g.row_begin.push_back(begin[a]);
+  }
+  g.row_begin.push_back(static_cast<std::uint32_t>(np));
+  if (!g.row_i.empty()) g.block_row.push_back(static_cast<std::uint32_t>(g.row_i.size()));
+  g.longest_block = std::max<std::size_t>(g.longest_block, np - block_start);
+  return g;
 }
 
 }  // namespace closurelab

@@ -19,6 +19,19 @@ template <class Keep>
 PairList find_pairs(const ParticleSystem& ps, const std::vector<std::int32_t>& subset, const PeriodicBox& box,
                     double radius, Keep keep);
 
+// A pair list grouped by its first particle: pairs (i, j), i < j, in rows of one i (j ascending), the rows cut
+// into blocks of about `block_pairs` pairs (the unit of the SPH engine's pair passes and of their threads).
+struct GroupedPairList {
+  PairList pairs;                   // grouped by i
+  std::vector<std::int32_t> row_i;  // row r: particle i of pairs [row_begin[r], row_begin[r + 1])
+  std::vector<std::uint32_t> row_begin;
+  std::vector<std::uint32_t> block_row;  // block b: rows [block_row[b], block_row[b + 1])
+  std::size_t longest_block = 0;         // pairs in the largest block
+};
+
+// Groups `list` (each pair once, i < j, particle indices below `n_particles`) by a counting sort on i.
+GroupedPairList group_by_first_particle(PairList list, std::size_t n_particles, std::size_t block_pairs = 256);
+
 // Orders `subset` by cell (y-major), so particles that interact are close in memory.
 void sort_by_cell(const ParticleSystem& ps, std::vector<std::int32_t>& subset, const PeriodicBox& box, double cell);
 

@@ -1,4 +1,4 @@
-// The direct SPH engine: its state, the list upkeep (search, grouping by particle), the per-particle steps of the
+// The direct SPH engine: its state, the list upkeep (search and rebuild test), the per-particle steps of the
 // two pair passes and the integrator; the pair loops themselves are in sph_pair_passes.hpp.
 #include "core/sph/sph_engine.hpp"
 
@@ -83,68 +83,31 @@ void SphEngine::rebuild_pairs_if_needed() {
     if (!need) return;
   }
   const auto& fixed = ps_.fixed;
-  pairs_ = find_pairs(ps_, active_, scene_.box, w_.support() + skin_,
-                      [&fixed](int a, int b) { return !(fixed[a] && fixed[b]); });
-  group_pairs_by_particle();
+  list_ = group_by_first_particle(find_pairs(ps_, active_, scene_.box, w_.support() + skin_,
+                                             [&fixed](int a, int b) { return !(fixed[a] && fixed[b]); }),
+                                  ps_.size());
+  for (auto& scratch : thread_scratch_) scratch.resize(list_.longest_block);
   x_built_ = ps_.x;
   y_built_ = ps_.y;
-  pair_dx_.resize(pairs_.size());
-  pair_dy_.resize(pairs_.size());
-  pair_f_.resize(pairs_.size());
+  pair_dx_.resize(list_.pairs.size());
+  pair_dy_.resize(list_.pairs.size());
+  pair_f_.resize(list_.pairs.size());
   built_ = true;
   ++list_rebuilds_;
 }
 
-// Orders the list by its first particle i (counting sort; within a row by j, so the scatter walks memory upwards)
-// and cuts the rows into blocks of about kBlockPairs pairs, the unit of the passes and of their threads.
-void SphEngine::group_pairs_by_particle() {
-  constexpr std::size_t kBlockPairs = 256;
-  const std::size_t np = pairs_.size(), n = ps_.size();
-  std::vector<std::uint32_t> begin(n + 1, 0);
-  for (std::size_t p = 0; p < np; ++p) ++begin[pairs_.i[p] + 1];
-  for (std::size_t a = 0; a < n; ++a) begin[a + 1] += begin[a];
-  PairList grouped;
-  grouped.i.resize(np);
-  grouped.j.resize(np);
-  std::vector<std::uint32_t> next(begin.begin(), begin.end() - 1);
-  for (std::size_t p = 0; p < np; ++p) {
-    const std::uint32_t q = next[pairs_.i[p]]++;
-    grouped.i[q] = pairs_.i[p];
-    grouped.j[q] = pairs_.j[p];
-  }
-  pairs_ = std::move(grouped);
-  row_i_.clear();
-  row_begin_.clear();
-  block_row_.assign(1, 0);
-  std::size_t block_start = 0, longest = 0;
-  for (std::size_t a = 0; a < n; ++a) {
-    if (begin[a + 1] == begin[a]) continue;
-    std::sort(pairs_.j.begin() + begin[a], pairs_.j.begin() + begin[a + 1]);
-    if (begin[a] - block_start >= kBlockPairs) {
-      block_row_.push_back(static_cast<std::uint32_t>(row_i_.size()));
-      longest = std::max<std::size_t>(longest, begin[a] - block_start);
-      block_start = begin[a];
-    }
-    row_i_.push_back(static_cast<std::int32_t>(a));
-    row_begin_.push_back(begin[a]);
-  }
-  row_begin_.push_back(static_cast<std::uint32_t>(np));
-  if (!row_i_.empty()) block_row_.push_back(static_cast<std::uint32_t>(row_i_.size()));
-  longest = std::max<std::size_t>(longest, np - block_start);
-  for (auto& scratch : thread_scratch_) scratch.resize(longest);
-}
-
 PairBlocks SphEngine::blocks() const {
-  return {pairs_.i.data(), pairs_.j.data(), row_i_.data(), row_begin_.data(), block_row_.data()};
+  return {list_.pairs.i.data(), list_.pairs.j.data(), list_.row_i.data(), list_.row_begin.data(),
+          list_.block_row.data()};
 }
 
 void SphEngine::compute_density() {
   rebuild_pairs_if_needed();
   const double w0 = w_.w(0.0);
-  const std::size_t np = pairs_.size(), n = ps_.size(), na = active_.size();
+  const std::size_t np = list_.pairs.size(), n = ps_.size(), na = active_.size();
   const bool quintic = w_.type() == SmoothingKernel::Type::quintic;
   const PairBlocks g = blocks();
-  const std::size_t nb = block_row_.size() - 1;
+  const std::size_t nb = list_.block_row.size() - 1;
   const PairKernelIsa isa = pair_kernel_isa();
 #pragma omp parallel num_threads(static_cast <int>(thread_buf_.size()))
   {
@@ -205,8 +168,8 @@ void SphEngine::force_rows_of_thread(std::size_t t, std::size_t nt) {
                                     ps_.phase.data(),     scene_.pair_viscosity_mean,
                                     2.0 * unlike_excess_, mu_.empty() ? 0.0 : mu_[0] + mu_[0]};
   const PairBlocks g = blocks();
-  const std::size_t nb = block_row_.size() - 1;
-  const std::size_t r0 = block_row_[nb * t / nt], r1 = block_row_[nb * (t + 1) / nt];
+  const std::size_t nb = list_.block_row.size() - 1;
+  const std::size_t r0 = list_.block_row[nb * t / nt], r1 = list_.block_row[nb * (t + 1) / nt];
   double* f = thread_buf_[t].data();
   const double *F = pair_f_.data(), *qx = pair_dx_.data(), *qy = pair_dy_.data();
   if (scene_.wall_model != WallModel::ghost_velocity) {
@@ -319,12 +282,12 @@ double SphEngine::time_step(double kappa) const {
 std::vector<PairForce> SphEngine::pair_forces() {
   compute_density();
   std::vector<PairForce> out;
-  out.reserve(pairs_.size());
-  for (std::size_t r = 0; r < row_i_.size(); ++r) {
-    const int i = row_i_[r];
-    for (std::size_t p = row_begin_[r]; p < row_begin_[r + 1]; ++p) {
+  out.reserve(list_.pairs.size());
+  for (std::size_t r = 0; r < list_.row_i.size(); ++r) {
+    const int i = list_.row_i[r];
+    for (std::size_t p = list_.row_begin[r]; p < list_.row_begin[r + 1]; ++p) {
       if (pair_f_[p] == 0.0) continue;
-      const int j = pairs_.j[p];
+      const int j = list_.pairs.j[p];
       const Vec2 q_ij(pair_dx_[p], pair_dy_[p]);
       const Vec2 f = pair_force(i, j, p, pressure(i) / (n_[i] * n_[i]), pressure(j) / (n_[j] * n_[j]));
       out.push_back({i, j, -q_ij, f});

@@ -78,13 +78,12 @@ class SphEngine {
   const std::vector<std::int32_t>& moving() const { return moving_; }
   std::int64_t pair_evaluations() const { return pair_evaluations_; }
   std::int64_t list_rebuilds() const { return list_rebuilds_; }
-  std::size_t pair_count() const { return pairs_.size(); }
+  std::size_t pair_count() const { return list_.pairs.size(); }
   std::size_t active_count() const { return active_.size(); }  // moving particles and the walls they reach
   double max_speed() const;
 
  private:
   void rebuild_pairs_if_needed();
-  void group_pairs_by_particle();
   PairBlocks blocks() const;
   void compute_density();
   // Thread t's share of the force pass (the rows of blocks nb·t/nt to nb·(t+1)/nt) into its accumulator.
@@ -107,9 +106,7 @@ class SphEngine {
   std::vector<SphPairInput> pair_input_;
   bool one_phase_ = true;  // every particle of one phase: μ_ij = 2μ and no unlike-pair excess
   double inv_lx_ = 0.0, inv_ly_ = 0.0;
-  PairList pairs_;  // the Verlet list, grouped by the first particle (group_pairs_by_particle)
-  std::vector<std::int32_t> row_i_;
-  std::vector<std::uint32_t> row_begin_, block_row_;
+  GroupedPairList list_;                             // the Verlet list, grouped by the first particle
   std::vector<double> pair_dx_, pair_dy_, pair_f_;   // minimum-image q_i − q_j and w'(r)/r per listed pair
   std::vector<std::vector<double>> thread_scratch_;  // a block's per-pair kernel values, per thread
   std::vector<std::vector<double>> thread_buf_;

@@ -131,6 +131,7 @@ void SphEngine::compute_density() {
       double sum = ps_.fixed[a] ? n_static_[a] : w0;
       for (std::size_t u = 0; u < nt; ++u) sum += thread_buf_[u][a];
       n_[a] = sum;
+      pair_input_[a] = {pressure(a) / (sum * sum), 1.0 / sum, ps_.vx[a], ps_.vy[a]};  // the force pass's inputs
     }
   }
   pair_evaluations_ += static_cast<std::int64_t>(np);
@@ -175,14 +176,14 @@ void SphEngine::force_rows_of_thread(std::size_t t, std::size_t nt) {
   if (scene_.wall_model != WallModel::ghost_velocity) {
     if (one_phase_)
       pair_passes::force_rows(
-          g, r0, r1,
+          g, r0, r1, F,
           [&](int i, int j, std::size_t p, double& fx, double& fy) {
             pair_passes::force_pair<true>(in, i, j, F[p], qx[p], qy[p], fx, fy);
           },
           f);
     else
       pair_passes::force_rows(
-          g, r0, r1,
+          g, r0, r1, F,
           [&](int i, int j, std::size_t p, double& fx, double& fy) {
             pair_passes::force_pair<false>(in, i, j, F[p], qx[p], qy[p], fx, fy);
           },
@@ -192,9 +193,9 @@ void SphEngine::force_rows_of_thread(std::size_t t, std::size_t nt) {
   // Ghost walls: fluid–wall pairs take their ghost velocity.
   const std::uint8_t* fixed = ps_.fixed.data();
   pair_passes::force_rows(
-      g, r0, r1,
+      g, r0, r1, F,
       [&](int i, int j, std::size_t p, double& fx, double& fy) {
-        if (fixed[i] == fixed[j] || F[p] == 0.0) {
+        if (fixed[i] == fixed[j]) {
           pair_passes::force_pair<false>(in, i, j, F[p], qx[p], qy[p], fx, fy);
           return;
         }
@@ -207,17 +208,12 @@ void SphEngine::force_rows_of_thread(std::size_t t, std::size_t nt) {
 
 void SphEngine::compute_accelerations() {
   compute_density();
-  const std::size_t n = ps_.size(), na = active_.size(), m = moving_.size();
+  const std::size_t n = ps_.size(), m = moving_.size();
 #pragma omp parallel num_threads(static_cast <int>(thread_buf_.size()))
   {
     const std::size_t t = omp_get_thread_num(), nt = omp_get_num_threads();
     auto& buf = thread_buf_[t];
     std::fill(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(2 * n), 0.0);
-#pragma omp for schedule(static)
-    for (std::size_t k = 0; k < na; ++k) {
-      const int a = active_[k];
-      pair_input_[a] = {pressure(a) / (n_[a] * n_[a]), 1.0 / n_[a], ps_.vx[a], ps_.vy[a]};
-    }
     force_rows_of_thread(t, nt);
 #pragma omp barrier
 #pragma omp for schedule(static)

@@ -128,7 +128,7 @@ inline void force_pair(const ForceInputs& in, int i, int j, double F, double qx,
 
 // The force pass over rows [r0, r1): the force on i of each listed pair from `pair` (i, j, p) -> (fx, fy), summed
 // over the row in registers, its opposite added to each j. A listed pair beyond the support (F = w'/r = 0 from
-// the density pass; about a quarter of the list, the skin's share) is skipped: its force is an exact zero, so
+// the density pass; on the lattice a third of the list, the skin's share) is skipped: its force is an exact zero, so
 // the sums are the same bits, and the branch costs less than the pair.
 template <class PairForceOnI>
 void force_rows(const PairBlocks& g, std::size_t r0, std::size_t r1, const double* __restrict F, PairForceOnI pair,

@@ -19,7 +19,8 @@ def main(path, prefix):
              "Errors at the coarse nodes, relative to the analytic peak; *interior*: nodes at least 3 eta' from the walls; "
              "*peak*: the paper's metric (max v_reduced - max v_ref) / max v_ref. *reduced s*: the reduced model's run; "
              "*setup s*: building its operators, factorizations and quadrature tables. Speed-up: direct SPH wall time / "
-             "(setup + run) of the reduced model, both measured in this run.\n",
+             "(setup + run) of the reduced model; the direct SPH's time is that of the run that computed it, which the "
+             "reference store may have kept from an earlier run (each row records where its reference came from).\n",
              "| cell | status | vs analytic max | interior | peak | vs avg analytic max | vs avg direct SPH max | peak vs direct | steps | dt | reduced s | setup s | direct s | speed-up |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in table["rows"]:

@@ -4,9 +4,9 @@
 #include <cerrno>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -115,6 +115,9 @@ MatrixMarketData read_matrix_market(const std::string& file) {
   d.rows = parse_index(r, ss, "row count");
   d.cols = parse_index(r, ss, "column count");
   if (d.rows <= 0 || d.cols <= 0) r.fail("matrix dimensions must be positive");
+  if (d.rows > kMatrixMarketMaxDimension || d.cols > kMatrixMarketMaxDimension)
+    r.fail("dimensions " + std::to_string(d.rows) + " x " + std::to_string(d.cols) + " exceed the reader's limit of " +
+           std::to_string(kMatrixMarketMaxDimension) + " rows or columns");
   if (symmetric && d.rows != d.cols) r.fail("a symmetric matrix must be square");
   const bool integer_field = field == "integer";
   if (d.coordinate) {
@@ -130,7 +133,8 @@ MatrixMarketData read_matrix_market(const std::string& file) {
       if (!r.next(line)) r.fail("file ends after " + std::to_string(k) + " of " + std::to_string(nnz) + " entries");
       std::istringstream es(line);
       const long i = parse_index(r, es, "row index"), j = parse_index(r, es, "column index");
-      if (i < 1 || i > d.rows || j < 1 || j > d.cols) r.fail("index (" + std::to_string(i) + ", " + std::to_string(j) + ") out of range");
+      if (i < 1 || i > d.rows || j < 1 || j > d.cols)
+        r.fail("index (" + std::to_string(i) + ", " + std::to_string(j) + ") out of range");
       const double v = parse_entry(r, es, integer_field);
       t.emplace_back(i - 1, j - 1, v);
       if (symmetric && i != j) t.emplace_back(j - 1, i - 1, v);
@@ -164,7 +168,8 @@ MatrixMarketData read_matrix_market(const std::string& file) {
 Eigen::VectorXd read_matrix_market_vector(const std::string& file) {
   const MatrixMarketData d = read_matrix_market(file);
   if (d.rows != 1 && d.cols != 1)
-    throw ConfigError(file, "expected a vector (n x 1 or 1 x n), got " + std::to_string(d.rows) + " x " + std::to_string(d.cols));
+    throw ConfigError(
+        file, "expected a vector (n x 1 or 1 x n), got " + std::to_string(d.rows) + " x " + std::to_string(d.cols));
   const Eigen::MatrixXd m = d.to_dense();
   return d.cols == 1 ? Eigen::VectorXd(m.col(0)) : Eigen::VectorXd(m.row(0).transpose());
 }
@@ -183,7 +188,8 @@ void write_matrix_market(const std::string& file, const Eigen::SparseMatrix<doub
   std::ofstream out(file);
   if (!out) throw ConfigError(file, "cannot write the Matrix Market file");
   out << "%%MatrixMarket matrix coordinate real general\n% written by closurelab\n"
-      << m.rows() << " " << m.cols() << " " << m.nonZeros() << "\n" << std::setprecision(17);
+      << m.rows() << " " << m.cols() << " " << m.nonZeros() << "\n"
+      << std::setprecision(17);
   for (int k = 0; k < m.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(m, k); it; ++it)
       out << it.row() + 1 << " " << it.col() + 1 << " " << it.value() << "\n";

@@ -12,6 +12,10 @@ namespace closurelab {
 
 // The reader refuses larger files (and anything that is not a regular file) before reading.
 inline constexpr long kMatrixMarketMaxBytes = 1L << 31;  // 2 GiB
+// And larger dimensions: a coordinate matrix's index arrays grow with its declared rows and columns, not with its
+// entries (a 7.9e9 x 1 header with one entry asked for ~95 GB), and Eigen's sparse indices are 32-bit. At this
+// limit they take at most ~0.4 GB.
+inline constexpr long kMatrixMarketMaxDimension = 1L << 24;  // 16,777,216
 
 struct MatrixMarketData {
   bool coordinate = false;             // coordinate (sparse) or array (dense) format
@@ -25,7 +29,7 @@ MatrixMarketData read_matrix_market(const std::string& file);
 // A vector: an n×1 or 1×n matrix in either format.
 Eigen::VectorXd read_matrix_market_vector(const std::string& file);
 
-void write_matrix_market(const std::string& file, const Eigen::MatrixXd& m);          // array real general
+void write_matrix_market(const std::string& file, const Eigen::MatrixXd& m);              // array real general
 void write_matrix_market(const std::string& file, const Eigen::SparseMatrix<double>& m);  // coordinate real general
 
 }  // namespace closurelab

@@ -43,33 +43,46 @@ TEST(DeconvMatrixMarket, RoundTripsDenseAndSparse) {
 }
 
 TEST(DeconvMatrixMarket, ReadsSymmetricCoordinateAndArrayAndVectors) {
-  const auto c = read_matrix_market(temp_file("sym.mtx",
-      "%%MatrixMarket matrix coordinate real symmetric\n% comment\n3 3 4\n1 1 2\n2 1 -1\n2 2 2\n3 3 5\n"));
+  const auto c = read_matrix_market(temp_file(
+      "sym.mtx", "%%MatrixMarket matrix coordinate real symmetric\n% comment\n3 3 4\n1 1 2\n2 1 -1\n2 2 2\n3 3 5\n"));
   Eigen::MatrixXd want(3, 3);
   want << 2, -1, 0, -1, 2, 0, 0, 0, 5;
   EXPECT_EQ(c.to_dense(), want);
-  const auto a = read_matrix_market(temp_file("syma.mtx",
-      "%%MatrixMarket matrix array real symmetric\n3 3\n2\n-1\n0\n2\n0\n5\n"));
+  const auto a =
+      read_matrix_market(temp_file("syma.mtx", "%%MatrixMarket matrix array real symmetric\n3 3\n2\n-1\n0\n2\n0\n5\n"));
   EXPECT_EQ(a.to_dense(), want);
-  const Eigen::VectorXd v = read_matrix_market_vector(temp_file("vec.mtx", "%%MatrixMarket matrix array integer general\n3 1\n1\n2\n3\n"));
+  const Eigen::VectorXd v =
+      read_matrix_market_vector(temp_file("vec.mtx", "%%MatrixMarket matrix array integer general\n3 1\n1\n2\n3\n"));
   EXPECT_EQ(v, Eigen::Vector3d(1, 2, 3));
 }
 
 TEST(DeconvMatrixMarket, MalformedFilesGiveClearErrors) {
   EXPECT_NE(error_of("/nonexistent/dir/a.mtx").find("cannot open"), std::string::npos);
   EXPECT_NE(error_of(temp_file("nobanner.mtx", "3 3\n1\n")).find("banner"), std::string::npos);
-  EXPECT_NE(error_of(temp_file("complex.mtx", "%%MatrixMarket matrix coordinate complex general\n1 1 1\n1 1 1 0\n")).find("field"),
+  EXPECT_NE(error_of(temp_file("complex.mtx", "%%MatrixMarket matrix coordinate complex general\n1 1 1\n1 1 1 0\n"))
+                .find("field"),
             std::string::npos);
-  EXPECT_NE(error_of(temp_file("range.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 1\n3 1 1\n")).find("out of range"),
+  EXPECT_NE(error_of(temp_file("range.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 1\n3 1 1\n"))
+                .find("out of range"),
             std::string::npos);
-  EXPECT_NE(error_of(temp_file("short.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 3\n1 1 1\n")).find("ends after"),
+  EXPECT_NE(error_of(temp_file("short.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 3\n1 1 1\n"))
+                .find("ends after"),
             std::string::npos);
   EXPECT_NE(error_of(temp_file("nan.mtx", "%%MatrixMarket matrix array real general\n1 1\nnan\n")).find("non-finite"),
             std::string::npos);
-  EXPECT_NE(error_of(temp_file("word.mtx", "%%MatrixMarket matrix array real general\n1 1\nabc\n")).find("not a number"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(temp_file("word.mtx", "%%MatrixMarket matrix array real general\n1 1\nabc\n")).find("not a number"),
+      std::string::npos);
   EXPECT_NE(error_of(temp_file("extra.mtx", "%%MatrixMarket matrix array real general\n1 1\n1\n2\n")).find("extra"),
             std::string::npos);
-  EXPECT_THROW(read_matrix_market_vector(temp_file("mat.mtx", "%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n4\n")),
-               ConfigError);
+  // A header the fuzzer found: 7.9e9 rows and one entry (the index arrays alone would take ~95 GB).
+  EXPECT_NE(error_of(temp_file("tall.mtx", "%%MatrixMarket matrix coordinate real general\n7879747974 1 1\n1 1 1\n"))
+                .find("exceed the reader's limit"),
+            std::string::npos);
+  EXPECT_NE(error_of(temp_file("wide.mtx", "%%MatrixMarket matrix coordinate real general\n1 16777217 1\n1 1 1\n"))
+                .find("exceed the reader's limit"),
+            std::string::npos);
+  EXPECT_THROW(
+      read_matrix_market_vector(temp_file("mat.mtx", "%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n4\n")),
+      ConfigError);
 }

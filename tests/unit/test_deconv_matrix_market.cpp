@@ -57,31 +57,23 @@ TEST(DeconvMatrixMarket, ReadsSymmetricCoordinateAndArrayAndVectors) {
 }
 
 TEST(DeconvMatrixMarket, MalformedFilesGiveClearErrors) {
+  // Each malformed file's error names what is wrong.
+  const auto error_names = [](const std::string& name, const std::string& content, const std::string& fragment) {
+    EXPECT_NE(error_of(temp_file(name, content)).find(fragment), std::string::npos) << name;
+  };
   EXPECT_NE(error_of("/nonexistent/dir/a.mtx").find("cannot open"), std::string::npos);
-  EXPECT_NE(error_of(temp_file("nobanner.mtx", "3 3\n1\n")).find("banner"), std::string::npos);
-  EXPECT_NE(error_of(temp_file("complex.mtx", "%%MatrixMarket matrix coordinate complex general\n1 1 1\n1 1 1 0\n"))
-                .find("field"),
-            std::string::npos);
-  EXPECT_NE(error_of(temp_file("range.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 1\n3 1 1\n"))
-                .find("out of range"),
-            std::string::npos);
-  EXPECT_NE(error_of(temp_file("short.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 3\n1 1 1\n"))
-                .find("ends after"),
-            std::string::npos);
-  EXPECT_NE(error_of(temp_file("nan.mtx", "%%MatrixMarket matrix array real general\n1 1\nnan\n")).find("non-finite"),
-            std::string::npos);
-  EXPECT_NE(
-      error_of(temp_file("word.mtx", "%%MatrixMarket matrix array real general\n1 1\nabc\n")).find("not a number"),
-      std::string::npos);
-  EXPECT_NE(error_of(temp_file("extra.mtx", "%%MatrixMarket matrix array real general\n1 1\n1\n2\n")).find("extra"),
-            std::string::npos);
+  error_names("nobanner.mtx", "3 3\n1\n", "banner");
+  error_names("complex.mtx", "%%MatrixMarket matrix coordinate complex general\n1 1 1\n1 1 1 0\n", "field");
+  error_names("range.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 1\n3 1 1\n", "out of range");
+  error_names("short.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 3\n1 1 1\n", "ends after");
+  error_names("nan.mtx", "%%MatrixMarket matrix array real general\n1 1\nnan\n", "non-finite");
+  error_names("word.mtx", "%%MatrixMarket matrix array real general\n1 1\nabc\n", "not a number");
+  error_names("extra.mtx", "%%MatrixMarket matrix array real general\n1 1\n1\n2\n", "extra");
   // A header the fuzzer found: 7.9e9 rows and one entry (the index arrays alone would take ~95 GB).
-  EXPECT_NE(error_of(temp_file("tall.mtx", "%%MatrixMarket matrix coordinate real general\n7879747974 1 1\n1 1 1\n"))
-                .find("exceed the reader's limit"),
-            std::string::npos);
-  EXPECT_NE(error_of(temp_file("wide.mtx", "%%MatrixMarket matrix coordinate real general\n1 16777217 1\n1 1 1\n"))
-                .find("exceed the reader's limit"),
-            std::string::npos);
+  error_names("tall.mtx", "%%MatrixMarket matrix coordinate real general\n7879747974 1 1\n1 1 1\n",
+              "exceed the reader's limit");
+  error_names("wide.mtx", "%%MatrixMarket matrix coordinate real general\n1 16777217 1\n1 1 1\n",
+              "exceed the reader's limit");
   EXPECT_THROW(
       read_matrix_market_vector(temp_file("mat.mtx", "%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n4\n")),
       ConfigError);

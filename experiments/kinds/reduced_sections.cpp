@@ -1,9 +1,13 @@
 #include "experiments/kinds/reduced_sections.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/base/errors.hpp"
 #include "core/closure/forward_operator.hpp"
+#include "core/sph/engine_version.hpp"
+#include "experiments/runner/provenance.hpp"
 
 namespace closurelab {
 
@@ -28,6 +32,52 @@ void check_snapshot_times(const json& times, const std::string& path) {
       throw ConfigError(path + "/" + std::to_string(k), "snapshot times must be finite numbers, positive and ascending");
     previous = t.get<double>();
   }
+}
+
+ParamSchema reduced_timing_schema() { return timing_schema(); }
+
+RepeatedReducedRuns repeat_reduced_run(const std::function<ReducedRunSeconds()>& run_once, const TimingPolicy& policy) {
+  RepeatedReducedRuns out;
+  out.setup_min = out.loop_min = std::numeric_limits<double>::infinity();
+  out.total = repeat_until_stable(
+      [&] {
+        const ReducedRunSeconds s = run_once();
+        out.setup_min = std::min(out.setup_min, s.setup);
+        out.loop_min = std::min(out.loop_min, s.loop);
+        return s.setup + s.loop;
+      },
+      policy);
+  return out;
+}
+
+void add_reduced_timing(json& cost, const RepeatedReducedRuns& runs, const json* direct_run) {
+  cost["setup_seconds"] = runs.setup_min;
+  cost["wall_seconds"] = runs.loop_min;
+  cost["reduced_timing"] = runs.total.to_json();
+  if (!direct_run) return;
+  const double direct_seconds = direct_run->at("wall_seconds").get<double>();
+  cost["direct_sph_wall_seconds"] = direct_seconds;
+  // Against the reduced model's whole cost, setup included (the direct run's setup is in its wall time).
+  cost["speed_up"] = runs.total.min > 0 ? direct_seconds / runs.total.min : 0.0;
+  cost["speed_up_at_median"] = runs.total.median > 0 ? direct_seconds / runs.total.median : 0.0;
+  // The direct run is timed once (seconds to minutes); where it was computed by another commit or on another
+  // host (a reused store entry), the row says so.
+  const json by = direct_run->contains("reference_store")
+                      ? direct_run->at("reference_store").value("computed_by", json::object())
+                      : json::object();
+  const json here = provenance("");
+  json timing = {{"repeats", 1},
+                 {"git_commit", by.value("git_commit", "unknown")},
+                 {"dirty", by.value("dirty", false)},
+                 {"host", by.value("host", "unknown")},
+                 {"date_utc", by.value("date_utc", "unknown")},
+                 {"threads", by.value("threads", 0)},
+                 {"same_commit", by.value("git_commit", "") == here.at("git_commit").get<std::string>() &&
+                                     by.value("dirty", false) == here.at("dirty").get<bool>()},
+                 {"same_host", by.value("host", "") == here.at("host").get<std::string>()}};
+  // A store entry is reused only by the engine version that computed it (its key holds the version).
+  timing["engine_version"] = sph_engine_version;
+  cost["direct_sph_timing"] = timing;
 }
 
 }  // namespace closurelab

@@ -1,9 +1,11 @@
 #pragma once
 // The spec sections that the reduced-model kinds share (reduced_model in 1D, reduced_model_2d): the closure
 // and the direct SPH reference.
+#include <functional>
 #include <string>
 
 #include "core/base/params.hpp"
+#include "core/base/repeated_timing.hpp"
 
 namespace closurelab {
 
@@ -14,5 +16,28 @@ ParamSchema reference_schema();
 // A transient section's snapshot times (`times`, an array at JSON path `path`): finite, positive, ascending;
 // ConfigError at the first that is not.
 void check_snapshot_times(const json& times, const std::string& path);
+
+// "timing": how the reduced run is repeated (core/base/repeated_timing.hpp).
+ParamSchema reduced_timing_schema();
+
+// One reduced run's two timed parts: building the solver (operators, factorizations, quadrature tables, the
+// strategies' setup) and its time loop.
+struct ReducedRunSeconds {
+  double setup = 0.0, loop = 0.0;
+};
+// The reduced run repeated under `policy`: the statistics of the whole run (setup + loop), and the fastest
+// setup and loop seen.
+struct RepeatedReducedRuns {
+  TimingStats total;
+  double setup_min = 0.0, loop_min = 0.0;
+};
+RepeatedReducedRuns repeat_reduced_run(const std::function<ReducedRunSeconds()>& run_once, const TimingPolicy& policy);
+
+// Writes the timing into a row's cost: setup_seconds and wall_seconds (the fastest setup and loop),
+// reduced_timing (the statistics of setup + loop); with the direct run's record (`direct_run`, its
+// "wall_seconds" and the store's "computed_by"): direct_sph_wall_seconds, speed_up (the direct time over the
+// fastest reduced run), speed_up_at_median, and direct_sph_timing (the commit, host and date that timed the
+// direct run and whether they are this run's).
+void add_reduced_timing(json& cost, const RepeatedReducedRuns& runs, const json* direct_run);
 
 }  // namespace closurelab

@@ -45,10 +45,10 @@ def pct(x):
 def best_reduced(rows):
     # Every coarse node (wall-surface nodes included) where the table has that subset; older tables: fluid nodes.
     every = any(get(r, "errors", "vs_averaged_direct_sph", "all_nodes") for r in rows)
-    subset = "all_nodes" if every else "all"
+    subset = "all_nodes" if every else "fluid_nodes"
 
     def err(r):
-        return get(r, "errors", "vs_averaged_direct_sph", subset, "max_rel") or get(r, "errors", "vs_averaged_analytic", "all", "max_rel")
+        return get(r, "errors", "vs_averaged_direct_sph", subset, "max_rel") or get(r, "errors", "vs_averaged_analytic", "fluid_nodes", "max_rel")
     def oracle(r):  # oracle rows are diagnostics (the error budget), not closures
         return bool(get(r, "params", "oracle", "closure")) or get(r, "params", "oracle", "boundary") not in (None, "none")
     ok = [r for r in rows if r.get("status") == "ok" and err(r) is not None and not oracle(r)]

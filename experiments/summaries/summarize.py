@@ -10,6 +10,8 @@ main table and the eta' sweep). `--which TABLE.json` prints the view that would 
 `--view front|profiles TABLE.json [OUT_DIR]` draws one reduced_model table's speed-against-error front
 (OUT_DIR/front.md, .png) or its profiles (OUT_DIR/profiles.md, .png) whatever its name;
 `--headline OUT_DIR TABLE.json ...` writes the quick run's OUT_DIR/summary.md and prints its headline.
+A figure that cannot be drawn (matplotlib missing: run under Debian's /usr/bin/python3 with python3-matplotlib)
+is an error, exit 1; `--no-figures` first writes the Markdown alone.
 
 Views (the summarize_*.py files beside this one, kept importable and runnable on their own):
   deconvolution_stability                          summarize_stability      tables -> SUMMARY.md
@@ -83,6 +85,12 @@ def main(argv):
     if not argv or argv[0] in ("-h", "--help"):
         print(__doc__)
         return 0 if argv else 2
+    if argv[0] == "--no-figures":  # the Markdown alone; otherwise a figure that cannot be drawn is an error
+        os.environ["CLOSURELAB_FIGURES"] = "off"
+        argv = argv[1:]
+        if not argv:
+            print(__doc__)
+            return 2
     if argv[0] == "--headline":
         run_view("summarize_headline", argv[1:])
         return 0

@@ -4,15 +4,18 @@
 Usage: python3 experiments/summaries/summarize_pareto.py TABLE.json OUT_PREFIX [ERROR_KEY]
 writes OUT_PREFIX.md and (where matplotlib is available) OUT_PREFIX.png. ERROR_KEY picks the error measure,
 "reference/subset" with reference in vs_averaged_direct_sph, vs_averaged_analytic, vs_analytic and subset in
-all, interior (default: vs_averaged_direct_sph/all when present, else vs_averaged_analytic/all); the measure is
-the max-norm error relative to the analytic peak. A cell is on the Pareto front unless another cell is no slower
-(reduced-model setup + run wall time) and no less accurate, and strictly better in one of the two. Every number is read from the table; wall times are on
-one shared core, so ratios are meaningful within one table only.
+all_nodes, fluid_nodes, interior, wall_band (default: vs_averaged_direct_sph/all_nodes when present, else
+vs_averaged_analytic/all_nodes: the headline metric, every coarse node the model reports, wall-surface nodes
+included); the measure is the max-norm error relative to the analytic peak. A cell is on the Pareto front unless
+another cell is no slower (reduced-model setup + run wall time; the minimum over the repeated runs where the row
+records them) and no less accurate, and strictly better in one of the two. Where rows record the timing spread
+(median over minimum), front points whose times lie within each other's spread are named: their order in time is
+not resolved. Every number is read from the table; ratios are meaningful within one table only.
 """
 import json
 import sys
 
-from summary_util import fmt, load_table, pyplot_or_none
+from summary_util import figure_label, fmt, load_table, pyplot_or_none
 
 
 def error_of(row, ref, subset):
@@ -23,8 +26,30 @@ def error_of(row, ref, subset):
 
 
 def total_seconds(row):
+    """The reduced run's setup + loop: the fastest of the repeated runs where the row records them."""
     c = row.get("cost", {})
+    if isinstance(c.get("reduced_timing"), dict):
+        return c["reduced_timing"].get("min_seconds")
     return None if "wall_seconds" not in c else c["wall_seconds"] + c.get("setup_seconds", 0.0)
+
+
+def timing_spread(row):
+    """(median - min) / min of the repeated runs, or None for a row timed once."""
+    t = row.get("cost", {}).get("reduced_timing")
+    return t.get("spread") if isinstance(t, dict) and t.get("repeats", 1) > 1 else None
+
+
+def unresolved_pairs(points):
+    """Adjacent (in time) front points whose times differ by less than the larger of their spreads."""
+    pairs = []
+    pts = sorted(points, key=lambda p: p[0])
+    for (t1, _, r1), (t2, _, r2) in zip(pts, pts[1:]):
+        s1, s2 = timing_spread(r1), timing_spread(r2)
+        if s1 is None or s2 is None:
+            continue
+        if t2 <= t1 * (1.0 + max(s1, s2)):
+            pairs.append((r1["label"], r2["label"]))
+    return pairs
 
 
 def main(path, prefix, key=None):
@@ -32,9 +57,11 @@ def main(path, prefix, key=None):
     prov = table["provenance"]
     rows = table["rows"]
     if key is None:
-        key = "vs_averaged_direct_sph/all" if any("vs_averaged_direct_sph" in r.get("errors", {}) for r in rows) \
-            else "vs_averaged_analytic/all"
+        key = "vs_averaged_direct_sph/all_nodes" if any("vs_averaged_direct_sph" in r.get("errors", {}) for r in rows) \
+            else "vs_averaged_analytic/all_nodes"
     ref, subset = key.split("/")
+    if subset == "all":
+        sys.exit("summarize_pareto: the node set 'all' is now named 'fluid_nodes' (or use 'all_nodes')")
     pts = []
     for r in rows:
         e = error_of(r, ref, subset)
@@ -45,14 +72,17 @@ def main(path, prefix, key=None):
     for t, e, r in pts:
         if not any((t2 <= t and e2 <= e) and (t2 < t or e2 < e) for t2, e2, _ in pts):
             front.add(r["id"])
+    subset_words = {"all_nodes": "all nodes, wall-surface nodes included", "fluid_nodes": "fluid nodes",
+                    "interior": "interior nodes", "wall_band": "wall-band nodes"}.get(subset, subset)
     lines = [f"# {table['experiment']}: speed against error\n", f"{table['description']}\n",
              f"From `{path}`; commit `{prov['git_commit']}`, {prov['compiler']}, {prov['build_type']}, "
              f"{prov['threads']} thread(s), {prov['date_utc']}; command `{prov['command']}`; complete: {table['complete']}.\n",
-             f"Error: max over the coarse nodes ({subset}) of |v_reduced - v_ref| / analytic peak, reference `{ref}`; "
+             f"Error: max over the coarse nodes ({subset_words}) of |v_reduced - v_ref| / analytic peak, reference `{ref}`; "
              "*peak*: the paper's metric against the same reference. *total s*: the reduced model's setup plus its run to "
-             "steady state (or the target time), of which *deconv s* in the deconvolution. **Bold**: on the Pareto front.\n",
-             "| strategy | status | error | peak | vs analytic | total s | deconv s | steps | speed-up vs direct SPH |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "steady state (or the target time), the fastest of *runs* repeated runs, *spread* (median - min) / min, "
+             "of which *deconv s* in the deconvolution. **Bold**: on the Pareto front.\n",
+             "| strategy | status | error | peak | vs analytic | total s | runs | spread | deconv s | steps | speed-up vs direct SPH |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     order = sorted(rows, key=lambda r: (r.get("status") != "ok",
                                         1e300 if error_of(r, ref, subset) is None else error_of(r, ref, subset)))
     for r in order:
@@ -62,29 +92,44 @@ def main(path, prefix, key=None):
         status = r.get("status", "") if r.get("status") == "ok" else f"{r.get('status')}: {message[:80]}"
         lines.append(f"| {label} | {status} | {fmt(error_of({'errors': e}, ref, subset))} | {fmt(e.get(ref, {}).get('peak_relative_difference'))} | "
                      f"{fmt(error_of({'errors': e}, 'vs_analytic', subset))} | {fmt(total_seconds(r))} | "
+                     f"{fmt((c.get('reduced_timing') or {}).get('repeats', 1))} | {fmt(timing_spread(r))} | "
                      f"{fmt(c.get('deconvolution_seconds'))} | {fmt(c.get('steps'))} | {fmt(c.get('speed_up'))} |")
     if pts:
         best = min(pts, key=lambda p: p[1])
         fastest = min(pts, key=lambda p: p[0])
         lines.append(f"\nMost accurate: {best[2]['label']} (error {fmt(best[1])}, {fmt(best[0])} s). "
                      f"Fastest: {fastest[2]['label']} ({fmt(fastest[0])} s, error {fmt(fastest[1])}).")
+        on_front = [p for p in pts if p[2]["id"] in front]
+        if any(timing_spread(p[2]) is None for p in on_front):
+            lines.append("Some front points were timed once: their order in time is not established by this table.")
+        for a, b in unresolved_pairs(on_front):
+            lines.append(f"Within the timing spread of each other (order in time not resolved): {a}; {b}.")
     open(prefix + ".md", "w").write("\n".join(lines) + "\n")
     plt = pyplot_or_none()
     if plt is None:
         return
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    for t, e, r in pts:
+    # Points numbered by error (most accurate first), the key beside the axes: labels never overlap.
+    fig, (ax, key) = plt.subplots(1, 2, figsize=(10.0, 4.8), gridspec_kw={"width_ratios": [3, 2]})
+    key.axis("off")
+    numbered = sorted(pts, key=lambda p: p[1])
+    for k, (t, e, r) in enumerate(numbered, 1):
         on = r["id"] in front
         ax.plot(t, e, "o" if on else "x", color="C3" if on else "0.4")
-        ax.annotate(r["label"], (t, e), fontsize=6, xytext=(3, 2), textcoords="offset points")
+        ax.annotate(str(k), (t, e), fontsize=7, xytext=(3, 2), textcoords="offset points")
+    key.text(0.0, 1.0, "\n".join(f"{k}{'*' if r['id'] in front else ''}: {figure_label(r['label'], 60)}"
+                                   for k, (_, _, r) in enumerate(numbered, 1)) + "\n(*: on the front)",
+             va="top", ha="left", fontsize=6, family="monospace", transform=key.transAxes)
     fp = sorted((t, e) for t, e, r in pts if r["id"] in front)
     if fp:
         ax.step([p[0] for p in fp], [p[1] for p in fp], where="post", color="C3", lw=0.8)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("reduced-model wall time, setup + run [s]")
-    ax.set_ylabel(f"max error / analytic peak ({ref}, {subset})")
-    ax.set_title(table["experiment"], fontsize=9)
+    ref_words = {"vs_averaged_direct_sph": "vs averaged direct SPH", "vs_averaged_analytic": "vs averaged analytic",
+                 "vs_analytic": "vs analytic"}.get(ref, ref)
+    ax.set_ylabel(f"max error / analytic peak\n({subset_words}, {ref_words})")
+    title = table["experiment"].removeprefix("pareto_").replace("_", " ").replace("-", " ")
+    ax.set_title(f"{title}: speed against error", fontsize=9)
     fig.tight_layout()
     fig.savefig(prefix + ".png", dpi=110)
 

@@ -1,6 +1,7 @@
 """Helpers shared by the summarize_*.py scripts (imported from the scripts' own folder)."""
 import json
 import math
+import os
 import sys
 
 
@@ -36,6 +37,19 @@ def _joined(values):
     return ", ".join(str(v) for v in values) if values else "unknown"
 
 
+def _rename_legacy_node_sets(obj):
+    """Rows written before the node sets were named for what they hold reported the fluid nodes as "all" beside
+    "all_nodes"; such a pair is read as "fluid_nodes" and "all_nodes" (the numbers are the same)."""
+    if isinstance(obj, dict):
+        if "all" in obj and "all_nodes" in obj and "fluid_nodes" not in obj:
+            obj["fluid_nodes"] = obj.pop("all")
+        for v in obj.values():
+            _rename_legacy_node_sets(v)
+    elif isinstance(obj, list):
+        for v in obj:
+            _rename_legacy_node_sets(v)
+
+
 def load_table(path):
     """A table as the views read it. A table whose provenance is derived from its rows (the runner's format since
     rows record their own provenance) gets the display fields the views print: the commits its rows came from,
@@ -44,6 +58,7 @@ def load_table(path):
     header held the provenance of one run, are returned as they are (so their summaries regenerate unchanged)."""
     with open(path) as f:
         table = json.load(f)
+    _rename_legacy_node_sets(table.get("rows", []))
     prov = table.get("provenance", {})
     if prov.get("derived_from") != "rows":
         return table
@@ -71,6 +86,16 @@ def load_table(path):
     return table
 
 
+def figure_label(label, width=40):
+    """A cell label for a figure: axis values "a.b.c=v" shortened to "c=v" (no internal key paths), wrapped."""
+    import textwrap
+    parts = []
+    for p in label.split(", "):
+        key, eq, value = p.partition("=")
+        parts.append(f"{key.rsplit('.', 1)[-1]}={value}" if eq and " " not in key.strip() else p)
+    return "\n".join(textwrap.wrap(", ".join(parts), width)) or label
+
+
 def dirty_mark(row):
     """" [dirty build]" for a row computed by a build with uncommitted changes (for views that print no label)."""
     p = row.get("provenance")
@@ -78,12 +103,18 @@ def dirty_mark(row):
 
 
 def pyplot_or_none():
-    """matplotlib.pyplot on the Agg backend, or None (with a note on stderr) where matplotlib is missing."""
+    """matplotlib.pyplot on the Agg backend. Where matplotlib is missing the summary fails loudly (exit 1, naming
+    the interpreter and the package), unless figures were turned off (summarize.py --no-figures, or
+    CLOSURELAB_FIGURES=off): then None, with a note on stderr, and only the Markdown is written."""
+    if os.environ.get("CLOSURELAB_FIGURES") == "off":
+        print("figures off: no figure drawn", file=sys.stderr)
+        return None
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         return plt
     except ImportError:
-        print("matplotlib not available: no figure", file=sys.stderr)
-        return None
+        raise SystemExit(f"summary: cannot draw the figure: matplotlib is not importable by {sys.executable} "
+                         "(Debian: apt-get install python3-matplotlib, and run the summaries with /usr/bin/python3; "
+                         "or pass --no-figures for the tables alone)")

@@ -1,0 +1,86 @@
+#include "core/base/repeated_timing.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace closurelab {
+
+ParamSchema timing_schema() {
+  const TimingPolicy d;
+  return {integer_param("min_repeats", d.min_repeats, "runs of the reduced model timed at least (budget permitting)", 1, 1000),
+          integer_param("max_repeats", d.max_repeats, "runs timed at most", 1, 10000),
+          number_param("budget_seconds", d.budget_seconds,
+                       "no new timed run once this much timed work is spent (a run longer than it is timed once)", 0.0,
+                       {}, true),
+          number_param("stability", d.stability,
+                       "stop after min_repeats once the last min_repeats/2 + 1 runs lowered the minimum by no more "
+                       "than this fraction",
+                       0.0, 1.0)};
+}
+
+TimingPolicy timing_policy_from(const json& r) {
+  TimingPolicy p;
+  p.min_repeats = r.at("min_repeats").get<int>();
+  p.max_repeats = std::max(p.min_repeats, r.at("max_repeats").get<int>());
+  p.budget_seconds = r.at("budget_seconds").get<double>();
+  p.stability = r.at("stability").get<double>();
+  return p;
+}
+
+json TimingStats::to_json() const {
+  return {{"repeats", repeats()},   {"min_seconds", min}, {"median_seconds", median}, {"max_seconds", max},
+          {"spread", spread()},     {"range", range()},   {"stopped_by", stopped_by}};
+}
+
+TimingStats timing_stats(std::vector<double> seconds) {
+  TimingStats s;
+  s.seconds = seconds;
+  if (seconds.empty()) return s;
+  std::sort(seconds.begin(), seconds.end());
+  const std::size_t n = seconds.size();
+  s.min = seconds.front();
+  s.max = seconds.back();
+  s.median = n % 2 ? seconds[n / 2] : 0.5 * (seconds[n / 2 - 1] + seconds[n / 2]);
+  return s;
+}
+
+TimingStats repeat_until_stable(const std::function<double()>& run_once, const TimingPolicy& policy) {
+  std::vector<double> seconds;
+  double spent = 0.0;
+  // The minimum before the last `window` runs: stable when those runs improved on it by at most `stability`.
+  const int window = policy.min_repeats / 2 + 1;
+  std::string stopped_by = "max_repeats";
+  while (static_cast<int>(seconds.size()) < policy.max_repeats) {
+    const double t = run_once();
+    seconds.push_back(t);
+    spent += t;
+    const int n = static_cast<int>(seconds.size());
+    if (n >= policy.min_repeats && n > window) {
+      const double before = *std::min_element(seconds.begin(), seconds.end() - window);
+      const double now = *std::min_element(seconds.begin(), seconds.end());
+      if (now >= before * (1.0 - policy.stability)) {
+        stopped_by = "stable";
+        break;
+      }
+    }
+    if (spent >= policy.budget_seconds) {
+      stopped_by = "budget";
+      break;
+    }
+  }
+  TimingStats s = timing_stats(std::move(seconds));
+  s.stopped_by = stopped_by;
+  return s;
+}
+
+TimingStats time_repeatedly(const std::function<void()>& work, const TimingPolicy& policy) {
+  return repeat_until_stable(
+      [&] {
+        const auto t0 = std::chrono::steady_clock::now();
+        work();
+        return seconds_since(t0);
+      },
+      policy);
+}
+
+}  // namespace closurelab

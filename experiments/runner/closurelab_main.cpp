@@ -1,4 +1,4 @@
-// The command-line program of closurelab (list, run, merge, deconvolve), as a function that a user's executable
+// The command-line program of closurelab (list, run, merge, deconvolve, store, export), as a function that a user's executable
 // calls with its own registration hook (experiments/runner/closurelab_main.hpp); the stock `closurelab` calls it
 // with none (main.cpp).
 //   closurelab list [family]
@@ -17,10 +17,12 @@
 #include "core/base/errors.hpp"
 #include "core/base/registry.hpp"
 #include "experiments/runner/deconvolve_command.hpp"
+#include "experiments/runner/export_command.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/kinds/reference_store.hpp"
 #include "experiments/runner/runner.hpp"
 #include "experiments/runner/shards.hpp"
+#include "experiments/runner/spec_checks.hpp"
 
 namespace closurelab {
 
@@ -33,9 +35,11 @@ void usage(std::ostream& os) {
      << "usage:\n"
      << "  closurelab list [FAMILY]                        families: " << families << "\n"
      << "  closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR] [--shard i/N]\n"
+     << "                 [--set KEY=VALUE ...] [--dry-run]\n"
      << "  mpirun -n K closurelab run SPEC.json [--out DIR] [--force] [--store DIR]\n"
      << "  closurelab merge DIR                            the table of a run made in shards\n"
      << "  closurelab store [--store DIR]                  the reference store's entries and size\n"
+     << "  closurelab export TABLE.json --csv [--out FILE]  a results table as CSV, one record per row\n"
      << "  closurelab deconvolve --matrix A.mtx --rhs b.mtx [--x-true x.mtx] --method NAME [--param k=v ...]\n"
      << "                        [--noise-level d] [--out x.mtx]\n"
      << "  closurelab COMMAND --help                       the usage of one command\n";
@@ -43,10 +47,15 @@ void usage(std::ostream& os) {
 
 const char* const run_usage =
     "usage: closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR] [--shard i/N]\n"
+    "                 [--set KEY=VALUE ...] [--dry-run]\n"
     "       mpirun -n K closurelab run SPEC.json [--out DIR] [--force] [--store DIR] [--shard i/N]\n"
     "  Expands the experiment matrix of SPEC.json, validates every cell before running any, runs them and writes\n"
     "  DIR/cells/<id>.json per cell and the table DIR/<name>.json. A finished cell is not run again.\n"
-    "  --out DIR      output folder (default: results); locked while the run writes\n"
+    "  A cell's object merges into the base's (deep merge), unless it names another strategy (\"name\").\n"
+    "  --out DIR      output folder (default: out/runs/<spec name>, git-ignored); locked while the run writes\n"
+    "  --set KEY=VALUE  sets the dotted KEY (e.g. solver.kappa=0.1) in every cell, over the base, the axes and\n"
+    "                 the cells; VALUE is read as JSON, else as a string; repeatable; validated like the spec\n"
+    "  --dry-run      validates and prints every resolved cell (defaults filled in); runs and writes nothing\n"
     "  --jobs N       cells run at once (default 1); the OpenMP threads are shared among them\n"
     "  --force        recompute finished cells, and each direct SPH reference they use (once per run)\n"
     "  --store DIR    the reference store: direct SPH runs kept across cells, specs, runs and ranks (default\n"
@@ -133,12 +142,44 @@ int list_command(int argc, char** argv, const Registry& reg) {
   return 0;
 }
 
+// `run --dry-run`: validates the spec and prints each cell (label, id, the resolved configuration with every
+// default filled in); exit 0 when every cell is valid, 2 otherwise. Nothing is run or written.
+int print_resolved_cells(const json& spec, const Registry& registry) {
+  const auto matrix = validate_matrix(spec, registry);
+  if (!matrix) return 2;
+  std::cout << "experiment " << spec.at("name").get<std::string>() << " (kind " << matrix->kind->name() << "): "
+            << matrix->cells.size() << " cell(s), all valid\n";
+  for (std::size_t i = 0; i < matrix->cells.size(); ++i) {
+    const MatrixCell& c = matrix->cells[i];
+    std::cout << "cell " << c.id << " [" << c.label << "] (" << c.path << "):\n" << matrix->resolved[i].dump(2) << "\n";
+  }
+  if (!std::cout.flush()) {
+    std::cerr << "error: cannot write the resolved cells to stdout\n";
+    return 1;
+  }
+  return 0;
+}
+
+// Where `run` writes without --out: out/runs/<spec name> (git-ignored), never the tracked results/.
+// (An invalid name is reported by the run's validation, before it writes.)
+std::string default_out_dir(const json& spec) {
+  try {
+    check_spec_top_level(spec);
+  } catch (const ConfigError&) {
+    return "out/runs/unnamed";
+  }
+  return "out/runs/" + spec["name"].get<std::string>();
+}
+
 int run_command(int argc, char** argv, const Registry& registry) {
   if (wants_help(argc, argv)) {
     std::cout << run_usage;
     return 0;
   }
   RunOptions opt;
+  opt.out_dir.clear();
+  bool dry_run = false;
+  std::vector<std::string> overrides;
   std::string spec_file, store_dir = default_reference_store_dir();
   for (int i = 0; i < argc; ++i) opt.command_line.append(i ? " " : "").append(argv[i]);
   for (int i = 2; i < argc; ++i) {
@@ -166,8 +207,16 @@ int run_command(int argc, char** argv, const Registry& registry) {
       if (store_dir.empty()) throw ConfigError("", "--store needs a folder name, got ''");
     } else if (a == "--shard") {
       opt.shard = parse_shard(need("i/N"));
+    } else if (a == "--set") {
+      const std::string kv = need("KEY=VALUE");
+      if (kv.find('=') == std::string::npos || kv[0] == '=')
+        throw ConfigError("", "--set needs KEY=VALUE with a dotted KEY (e.g. solver.kappa=0.1), got '" + kv + "'");
+      overrides.push_back(kv);
+    } else if (a == "--dry-run") {
+      dry_run = true;
     } else if (!a.empty() && a[0] == '-') {
-      throw ConfigError("", "unknown option '" + a + "'; valid: --out, --jobs, --force, --store, --shard, --help");
+      throw ConfigError("", "unknown option '" + a +
+                                "'; valid: --out, --jobs, --force, --store, --shard, --set, --dry-run, --help");
     } else if (spec_file.empty()) {
       spec_file = a;
     } else {
@@ -176,8 +225,11 @@ int run_command(int argc, char** argv, const Registry& registry) {
   }
   if (spec_file.empty()) throw ConfigError("", "run needs a SPEC.json");
   opt.spec_file = spec_file;
+  json spec = read_json_file(spec_file);
+  for (const std::string& o : overrides) apply_override(spec, o);
+  if (dry_run) return print_resolved_cells(spec, registry);
+  if (opt.out_dir.empty()) opt.out_dir = default_out_dir(spec);
   configure_reference_store(store_dir, opt.force);
-  const json spec = read_json_file(spec_file);
   const int code = run_experiment(spec, registry, opt);
   std::error_code ec;
   if (std::filesystem::is_directory(store_dir, ec))
@@ -255,6 +307,7 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
     if (cmd == "merge") return merge_command(argc, argv, registry);
     if (cmd == "deconvolve") return run_deconvolve_command(argc, argv, registry);
     if (cmd == "store") return store_command(argc, argv);
+    if (cmd == "export") return run_export_command(argc, argv);
     if (cmd == "--help" || cmd == "-h" || cmd == "help") {
       usage(std::cout);
       return 0;
@@ -263,7 +316,8 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
       std::cout << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n";
       return 0;
     }
-    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, merge, deconvolve, store, --help, --version\n";
+    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, merge, deconvolve, store, export, --help, "
+                 "--version\n";
     usage(std::cerr);
     return 2;
   } catch (const ConfigError& e) {

@@ -22,13 +22,23 @@ std::string fnv1a_hex(const std::string& s) {
   return std::string(buf, 12);
 }
 
-void merge_into(json& target, const json& patch) {
-  for (const auto& [k, v] : patch.items()) {
-    if (v.is_object() && target.contains(k) && target[k].is_object()) {
-      merge_into(target[k], v);
-    } else {
-      target[k] = v;
-    }
+// Whether `value` (an object) names a strategy other than the one `slot` holds: {"name": ...} differing.
+bool names_another_strategy(const json& slot, const json& value) {
+  return value.is_object() && value.contains("name") && slot.is_object() && slot.value("name", json()) != value.at("name");
+}
+
+// Sets `value` into `slot`: an object merges key by key (deep merge) unless it names another strategy, which
+// replaces the object there; anything else replaces.
+void merge_value(json& slot, const json& value) {
+  if (!value.is_object() || !slot.is_object() || names_another_strategy(slot, value)) {
+    slot = value;
+    return;
+  }
+  for (const auto& [k, v] : value.items()) {
+    if (slot.contains(k))
+      merge_value(slot[k], v);
+    else
+      slot[k] = v;
   }
 }
 
@@ -48,7 +58,63 @@ void set_dotted(json& target, const std::string& dotted, const json& value, cons
     if (!node->is_object()) throw ConfigError(path, "'" + part + "' in '" + dotted + "' is not an object");
     part = next;
   }
-  (*node)[part] = value;
+  // An object merges into the object it lands on (deep merge: the base's other keys stay), unless it names a
+  // different strategy ("name"), whose parameters would not fit the base's: then it replaces it (at any depth).
+  merge_value((*node)[part], value);
+}
+
+namespace {
+
+bool starts_with_key(const std::string& key, const std::string& prefix) {
+  return key.size() > prefix.size() && key.compare(0, prefix.size(), prefix) == 0 && key[prefix.size()] == '.';
+}
+
+// Sets `key` to `value` in one value of an axis or cell that the spec gives for `given` (a dotted key).
+void override_in(json& given_value, const std::string& given, const std::string& key, const json& value,
+                 const std::string& path) {
+  if (given == key) {
+    given_value = value;
+  } else if (starts_with_key(key, given)) {
+    if (!given_value.is_object())
+      throw ConfigError(path, "--set " + key + ": this value of '" + given + "' is not an object");
+    set_dotted(given_value, key.substr(given.size() + 1), value, path);
+  } else if (starts_with_key(given, key)) {
+    throw ConfigError(path, "--set " + key + " sets what '" + given +
+                                "' varies inside it; set the inner key instead, or remove it from the spec");
+  }
+}
+
+}  // namespace
+
+void apply_override(json& spec, const std::string& assignment) {
+  const std::size_t eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw ConfigError("", "--set needs KEY=VALUE with a dotted KEY (e.g. solver.kappa=0.1), got '" + assignment + "'");
+  const std::string key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  json value = json::parse(text, nullptr, false);
+  if (value.is_discarded()) value = text;  // not JSON: a string
+  if (!spec.is_object()) throw ConfigError("", "an experiment spec must be a JSON object");
+  if (!spec.contains("base")) spec["base"] = json::object();
+  if (!spec["base"].is_object()) throw ConfigError("/base", "expected an object");
+  set_dotted(spec["base"], key, value, "--set " + key);
+  if (spec.contains("axes") && spec["axes"].is_object()) {
+    for (auto& [axis, values] : spec["axes"].items()) {
+      if (axis == key) {
+        values = json::array({value});  // one value left: the axis still labels the cells
+      } else if (values.is_array()) {
+        for (std::size_t i = 0; i < values.size(); ++i)
+          override_in(values[i], axis, key, value, "/axes/" + axis + "/" + std::to_string(i));
+      }
+    }
+  }
+  if (spec.contains("cells") && spec["cells"].is_array()) {
+    for (std::size_t i = 0; i < spec["cells"].size(); ++i) {
+      json& cell = spec["cells"][i];
+      if (!cell.is_object()) continue;  // expand_matrix reports it
+      for (auto& [given, v] : cell.items())
+        if (given != "label") override_in(v, given, key, value, "/cells/" + std::to_string(i) + "/" + given);
+    }
+  }
 }
 
 std::vector<MatrixCell> expand_matrix(const json& spec) {

@@ -24,8 +24,16 @@ struct MatrixCell {
 // Expands the spec; throws ConfigError naming the JSON path on a malformed spec.
 std::vector<MatrixCell> expand_matrix(const json& spec);
 
-// Sets `value` at a dotted path ("scene.n_y") inside `target`, creating objects on the way.
+// Sets `value` at a dotted path ("scene.n_y") inside `target`, creating objects on the way. An object value
+// merges into an object already there (deep merge: {"solver": {"scheme": "staggered"}} keeps the base's other
+// solver keys), unless it names another strategy ({"name": ...} different from the one there), which replaces it.
 void set_dotted(json& target, const std::string& dotted, const json& value, const std::string& path);
+
+// `closurelab run --set KEY=VALUE`: sets the dotted KEY in the base, in every axis value and every cell that
+// gives KEY or an object above it (an axis over KEY itself keeps the one value), so that VALUE holds in every
+// cell; VALUE is parsed as JSON, else taken as a string. ConfigError when an axis or cell varies a key inside KEY
+// (it would override part of VALUE) or KEY=VALUE is malformed.
+void apply_override(json& spec, const std::string& assignment);
 
 class ExperimentKind;
 
@@ -43,7 +51,7 @@ struct ValidMatrix {
 std::optional<ValidMatrix> validate_matrix(const json& spec, const Registry& registry);
 
 struct RunOptions {
-  std::string out_dir = "results";
+  std::string out_dir = "out/runs/unnamed";  // `closurelab run` without --out: out/runs/<spec name> (git-ignored)
   int jobs = 1;
   bool force = false;  // re-run finished cells
   std::string command_line;

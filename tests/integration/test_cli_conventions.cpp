@@ -17,7 +17,7 @@ bool ends_with_newline(const std::string& s) { return !s.empty() && s.back() == 
 
 TEST(CliConventions, HelpOfEachCommandPrintsItsUsageAndExitsZero) {
   const auto work = fresh_work_folder("cli_help");
-  for (const std::string cmd : {"run", "merge", "deconvolve", "list", "store"}) {
+  for (const std::string cmd : {"run", "merge", "deconvolve", "list", "store", "export"}) {
     const CliOutcome o = run_closurelab(work, cmd + " --help");
     EXPECT_EQ(o.code, 0) << cmd << ": " << o.err;
     EXPECT_NE(o.out.find("usage: closurelab " + cmd), std::string::npos) << cmd << ": " << o.out;
@@ -57,7 +57,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInvocation{"frobnicate", {"'frobnicate'", "list", "run", "merge", "deconvolve"}},
         BadInvocation{"list nonsense", {"'nonsense'", "kernel", "deconvolver", "quadrature", "scene", "experiment"}},
         BadInvocation{"list kernel extra", {"'extra'"}},
-        BadInvocation{"run spec.json --frob", {"'--frob'", "--out", "--jobs", "--force", "--store", "--shard", "--help"}},
+        BadInvocation{"run spec.json --frob",
+                      {"'--frob'", "--out", "--jobs", "--force", "--store", "--shard", "--set", "--dry-run", "--help"}},
         BadInvocation{"run spec.json --store ''", {"--store"}},
         BadInvocation{"store --frob", {"'--frob'", "--store", "--help"}},
         BadInvocation{"run spec.json --shard 3", {"--shard", "i/N", "'3'"}},
@@ -68,7 +69,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadInvocation{"run", {"SPEC.json"}},
         BadInvocation{"deconvolve --frob", {"--frob", "--matrix", "--rhs", "--method", "--help"}},
         BadInvocation{"deconvolve", {"--matrix", "usage: closurelab deconvolve"}},
-        BadInvocation{"deconvolve --matrix", {"--matrix", "missing value"}}),
+        BadInvocation{"deconvolve --matrix", {"--matrix", "missing value"}},
+        BadInvocation{"export --frob", {"'--frob'", "--csv", "--out", "--help"}},
+        BadInvocation{"export", {"TABLE.json", "usage: closurelab export"}},
+        BadInvocation{"export t.json", {"--csv"}},
+        BadInvocation{"run spec.json --set kappa", {"--set", "KEY=VALUE"}}),
     [](const ::testing::TestParamInfo<BadInvocation>& info) {
       std::string name = std::to_string(info.index) + "_";
       for (const char* c = info.param.args; *c; ++c) name += std::isalnum(static_cast<unsigned char>(*c)) ? *c : '_';

@@ -1,0 +1,121 @@
+#include "experiments/runner/export_command.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "core/base/errors.hpp"
+
+namespace closurelab {
+
+namespace {
+
+const char* const export_usage =
+    "usage: closurelab export TABLE.json --csv [--out FILE]\n"
+    "  Writes the table as CSV (to stdout, or FILE): one record per row with id, label, status and every value\n"
+    "  of the row's params, errors and cost as a dotted column (errors.vs_averaged_direct_sph.all_nodes.max_rel).\n"
+    "  Exit codes: 0 written, 1 a write failed, 2 bad input.\n";
+
+// The leaves of `v` under `prefix` (objects descend; scalars and strings are leaves; arrays of scalars are
+// skipped unless short, which are written as JSON text, e.g. a list of snapshot times).
+void flatten(const json& v, const std::string& prefix, std::map<std::string, std::string>& out) {
+  if (v.is_object()) {
+    for (const auto& [k, x] : v.items()) flatten(x, prefix.empty() ? k : prefix + "." + k, out);
+  } else if (v.is_array()) {
+    if (v.size() <= 8 && std::all_of(v.begin(), v.end(), [](const json& e) { return e.is_primitive(); }))
+      out[prefix] = v.dump();
+  } else if (v.is_string()) {
+    out[prefix] = v.get<std::string>();
+  } else if (!v.is_null()) {
+    out[prefix] = v.dump();
+  }
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+}  // namespace
+
+std::string table_to_csv(const json& table) {
+  if (!table.is_object() || !table.contains("rows") || !table["rows"].is_array())
+    throw ConfigError("/rows", "not a closurelab results table (no \"rows\" array)");
+  std::vector<std::map<std::string, std::string>> records;
+  std::set<std::string> columns;
+  for (const json& row : table["rows"]) {
+    std::map<std::string, std::string> r;
+    for (const char* section : {"params", "errors", "cost"})
+      if (row.contains(section)) flatten(row[section], section, r);
+    for (const auto& [k, v] : r) columns.insert(k);
+    for (const char* key : {"id", "label", "status"})
+      if (row.contains(key) && row[key].is_string()) r[key] = row[key].get<std::string>();
+    records.push_back(std::move(r));
+  }
+  std::vector<std::string> order = {"id", "label", "status"};
+  order.insert(order.end(), columns.begin(), columns.end());
+  std::ostringstream os;
+  for (std::size_t c = 0; c < order.size(); ++c) os << (c ? "," : "") << csv_field(order[c]);
+  os << "\n";
+  for (const auto& r : records) {
+    for (std::size_t c = 0; c < order.size(); ++c) {
+      const auto it = r.find(order[c]);
+      os << (c ? "," : "") << (it == r.end() ? "" : csv_field(it->second));
+    }
+    os << "\n";
+  }
+  return os.str();
+}
+
+int run_export_command(int argc, char** argv) {
+  std::string table_file, out_file;
+  bool csv = false;
+  for (int i = 2; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
+      std::cout << export_usage;
+      return 0;
+    }
+  }
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--csv") {
+      csv = true;
+    } else if (a == "--out") {
+      if (i + 1 >= argc || argv[i + 1][0] == '\0') throw ConfigError("", "--out needs a file name");
+      out_file = argv[++i];
+    } else if (!a.empty() && a[0] == '-') {
+      throw ConfigError("", "unknown option '" + a + "'; valid: --csv, --out, --help");
+    } else if (table_file.empty()) {
+      table_file = a;
+    } else {
+      throw ConfigError("", "more than one table given ('" + table_file + "', '" + a + "')");
+    }
+  }
+  if (table_file.empty()) throw ConfigError("", "export needs a TABLE.json\n" + std::string(export_usage));
+  if (!csv) throw ConfigError("", "export needs a format: --csv (the one format so far)");
+  const std::string text = table_to_csv(read_json_file(table_file));
+  if (out_file.empty()) {
+    std::cout << text;
+    if (!std::cout.flush()) {
+      std::cerr << "error: cannot write the CSV to stdout\n";
+      return 1;
+    }
+    return 0;
+  }
+  std::ofstream f(out_file, std::ios::binary);
+  f << text;
+  f.close();
+  if (!f) {
+    std::cerr << "error: cannot write '" << out_file << "'\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace closurelab

@@ -1,0 +1,17 @@
+#pragma once
+// `closurelab export TABLE.json --csv [--out FILE]`: a results table as CSV for other tools (pandas, a
+// spreadsheet), one record per row: id, label, status, then every leaf of the row's params, errors and cost
+// as a dotted column name (arrays of numbers, e.g. profiles, are left out: they are not table cells).
+#include <string>
+
+#include "core/base/params.hpp"
+
+namespace closurelab {
+
+// The CSV text of a table (`table`: the runner's JSON table). Columns are the union over the rows, in sorted
+// order after the three leading ones; a row without a column has an empty cell.
+std::string table_to_csv(const json& table);
+
+int run_export_command(int argc, char** argv);
+
+}  // namespace closurelab

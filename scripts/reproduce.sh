@@ -4,10 +4,13 @@
 #   scripts/reproduce.sh          the quick run: computes from scratch (no cached cell reused) the headline
 #                                 matrix of experiments/quick/ into out/quick/ (git-ignored): the direct SPH
 #                                 reference of a channel (n_y = 96) and of the kolmogorov scene (n_y = 64), the
-#                                 reduced model with six closures on each, the speed-against-error front and the
-#                                 profiles as figures; prints one line per cell with the time left, and ends with
-#                                 the headline (best closure's error, its speed-up, the reference's own error).
-#                                 Measured: see the README ("The two commands").
+#                                 reduced model with the paper's closures on each (and, on the channel, the
+#                                 force-density balance and the near-wall formulation), each reduced run repeated
+#                                 until its fastest time is stable, the speed-against-error front and the profiles
+#                                 as figures; prints one line per cell with the time left, and ends with the
+#                                 headline (best closure's error beside the paper formulation's best, speed-ups
+#                                 from the fastest runs with the median's, the reference's own error).
+#                                 Measured: docs/results.md ("The quick run").
 #   scripts/reproduce.sh --full   regenerates the committed paper set in results/ (hours from scratch; finished
 #                                 cells are kept and skipped, so an interrupted run resumes; add --force to
 #                                 recompute), then every summary and the index results/README.md.
@@ -19,7 +22,7 @@ mode=quick
 case "${1:-}" in
   --full) mode=full; shift ;;
   --summaries) mode=summaries; shift ;;
-  --help|-h) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  --help|-h) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   "") ;;
   *) echo "reproduce: unknown argument '$1'; valid: --full [closurelab run options], --summaries, --help" >&2; exit 2 ;;
 esac

@@ -45,6 +45,23 @@ void write_pysph_like(const std::string& file, const std::vector<std::string>& p
   H5Fclose(f);
 }
 
+// Every number of `a` equals its counterpart in `b` to 1e-12 relative (integers exactly), the keys the same.
+void expect_same_numbers(const json& a, const json& b, const std::string& path) {
+  ASSERT_EQ(a.type(), b.type()) << path;
+  if (a.is_object()) {
+    ASSERT_EQ(a.size(), b.size()) << path;
+    for (auto it = a.begin(); it != a.end(); ++it) {
+      ASSERT_TRUE(b.contains(it.key())) << path << "/" << it.key();
+      expect_same_numbers(it.value(), b.at(it.key()), path + "/" + it.key());
+    }
+  } else if (a.is_number_float()) {
+    const double x = a.get<double>(), y = b.get<double>();
+    EXPECT_LE(std::abs(x - y), 1e-12 * std::max(std::abs(x), std::abs(y))) << path << ": " << x << " vs " << y;
+  } else {
+    EXPECT_EQ(a, b) << path;
+  }
+}
+
 }  // namespace
 
 TEST(PysphOutput, ReadsThePysphFileAsPysphWroteIt) {
@@ -115,8 +132,8 @@ TEST(PysphOutput, MalformedFilesAreRefusedByName) {
   }
 }
 
-// The acceptance: a snapshot_closure cell on the PySPH file passes, and gives exactly the row of the same
-// particles from the CSV.
+// The acceptance: a snapshot_closure cell on the PySPH file passes, and gives the row of the same particles from
+// the CSV.
 TEST(PysphOutput, SnapshotClosureOnAPysphFileEqualsTheCsvOfItsParticles) {
   const auto work = fresh_work_folder("pysph_snapshot_closure");
   const json spec = {{"name", "pysph"},
@@ -139,5 +156,7 @@ TEST(PysphOutput, SnapshotClosureOnAPysphFileEqualsTheCsvOfItsParticles) {
       EXPECT_LT(v, 1.0) << part << ": " << row["errors"].dump();  // a closure, not noise
     }
   }
-  EXPECT_EQ(table["rows"][0]["errors"].dump(), table["rows"][1]["errors"].dump());
+  // The same particles, so the same errors up to the order of the closure's parallel sums, which is not the same
+  // from run to run (measured: equal in one run, 4e-14 relative apart in another): 1e-12 relative.
+  expect_same_numbers(table["rows"][0]["errors"], table["rows"][1]["errors"], "errors");
 }

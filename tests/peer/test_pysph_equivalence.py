@@ -177,9 +177,9 @@ def compare(a, work, np):
     vel_rel = float(np.max(dvel) / peak)
     pos_abs = float(np.max(dpos))
     worst_v = int(np.argmax(dvel))
-    print("peer: %s%s n_y = %d, n_x = %d, %s walls, t = %r (closurelab %r, PySPH %r after %d steps)"
+    print("peer: %s%s n_y = %d, n_x = %d, %s walls, t = %r (closurelab %r after %d steps, PySPH %r after %d)"
           % (a.scene, " " + a.case if a.scene == "layered-two-phase" else "", a.ny, a.nx, a.wall_model, a.tf,
-             cl["time"], py["time"], py["count"]))
+             cl["time"], int(row["cost"]["steps"]), py["time"], py["count"]))
     print("peer: %d particles (%d fluid); peak |v| %.6g; particle mass relative difference %.3g"
           % (n, int(np.sum(fluid)), peak, mass_rel))
     print("peer: max |v_closurelab - v_pysph| / peak = %.3e (particle %d, y = %.6f); tolerance %.0e"
@@ -188,6 +188,9 @@ def compare(a, work, np):
           % (pos_abs, pos_abs * a.ny, POS_TOL))
     print("peer: seconds: closurelab %.2f (run command, whole cell), PySPH %.2f (with its compile when not cached)"
           % (cl_seconds, py_seconds))
+    cl_steps = int(row["cost"]["steps"])
+    if cl_steps != py["count"]:
+        failures.append("step counts differ: closurelab %d, PySPH %d" % (cl_steps, py["count"]))
     if abs(cl["time"] - py["time"]) > 1e-12 * a.tf:
         failures.append("final times differ: %r vs %r" % (cl["time"], py["time"]))
     if mass_rel > 1e-14:

@@ -70,8 +70,9 @@ TEST(PysphOutput, ReadsThePysphFileAsPysphWroteIt) {
   const ParticleSystem& p = s.particles;
   EXPECT_EQ(s.time, 0.1);
   ASSERT_EQ(p.size(), 32u * 12u);
-  EXPECT_TRUE(s.has_fixed);  // the array named `solid`
-  EXPECT_EQ(std::count(p.fixed.begin(), p.fixed.end(), 1), 2 * 6 * 12);  // 6 wall rows each side (3 eta' = 6 eps')
+  // The array named `solid` holds the walls: 6 rows each side (3 eta' = 6 eps').
+  EXPECT_TRUE(s.has_fixed);
+  EXPECT_EQ(std::count(p.fixed.begin(), p.fixed.end(), 1), 2 * 6 * 12);
   for (std::size_t a = 0; a < p.size(); ++a) {
     EXPECT_EQ(p.fixed[a] != 0, p.y[a] < 3.0 / 16.0 || p.y[a] > 13.0 / 16.0) << a;
     if (p.fixed[a]) EXPECT_EQ(p.vx[a], 0.0) << a;
@@ -136,14 +137,16 @@ TEST(PysphOutput, MalformedFilesAreRefusedByName) {
 // the CSV.
 TEST(PysphOutput, SnapshotClosureOnAPysphFileEqualsTheCsvOfItsParticles) {
   const auto work = fresh_work_folder("pysph_snapshot_closure");
-  const json spec = {{"name", "pysph"},
-                     {"kind", "snapshot_closure"},
-                     {"base", {{"scene", {{"name", "poiseuille-uniform"}, {"n_y", 32}, {"n_x", 12}}},
-                               {"closure", {{"deconvolver", {{"name", "tikhonov"}, {"rule", "gcv"}}},
-                                            {"discretization", "coarse_fine"}}}}},
-                     {"axes", {{"snapshot.file", {pysph_file, csv_file}}}}};
+  const json spec = {
+      {"name", "pysph"},
+      {"kind", "snapshot_closure"},
+      {"base",
+       {{"scene", {{"name", "poiseuille-uniform"}, {"n_y", 32}, {"n_x", 12}}},
+        {"closure", {{"deconvolver", {{"name", "tikhonov"}, {"rule", "gcv"}}}, {"discretization", "coarse_fine"}}}}},
+      {"axes", {{"snapshot.file", {pysph_file, csv_file}}}}};
   write_text(work / "spec.json", spec.dump(1));
-  const CliOutcome o = run_closurelab(work, "run " + (work / "spec.json").string() + " --out " + (work / "out").string());
+  const CliOutcome o =
+      run_closurelab(work, "run " + (work / "spec.json").string() + " --out " + (work / "out").string());
   ASSERT_EQ(o.code, 0) << o.err;
   const json table = json::parse(read_text(work / "out" / "pysph.json"));
   ASSERT_EQ(table.at("rows").size(), 2u);

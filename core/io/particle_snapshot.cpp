@@ -7,6 +7,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/io/h5part.hpp"
+#include "core/io/pysph_output.hpp"
 
 namespace closurelab {
 
@@ -98,8 +99,14 @@ ParticleSnapshot read_particle_snapshot(const std::string& file, int step) {
     if (step != 0 && step != -1) throw ConfigError("", "'" + file + "' is a CSV file: one step (0 or -1)");
     return read_particle_csv(file);
   }
-  if (ext == "h5part" || ext == "h5" || ext == "hdf5") return read_h5part(file, step);
-  throw ConfigError("", "'" + file + "': unknown particle file type '." + ext + "'; known: .h5part, .h5, .hdf5, .csv");
+  if (ext == "h5part" || ext == "h5" || ext == "hdf5") {
+    if (!is_pysph_output(file)) return read_h5part(file, step);
+    if (step != 0 && step != -1) throw ConfigError("", "'" + file + "' is a PySPH output file: one step (0 or -1)");
+    return read_pysph_output(file);  // core/io/pysph_output.hpp: PySPH's own layout
+  }
+  if (ext == "npz") throw ConfigError("", pysph_npz_refusal(file));
+  throw ConfigError("", "'" + file + "': unknown particle file type '." + ext +
+                            "'; known: .h5part, .h5, .hdf5 (H5Part or PySPH output), .csv");
 }
 
 }  // namespace closurelab

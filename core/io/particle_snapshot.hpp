@@ -1,7 +1,8 @@
 #pragma once
 // Particle snapshots on disk: HDF5 in the H5Part layout (core/io/h5part.hpp; opens as it is in ParaView's
 // H5Part reader and in h5py) and CSV with the header x,y,vx,vy,mass,phase (a snapshot from another code).
-// `read_particle_snapshot` picks the reader by the file's extension (.h5part/.h5/.hdf5, or .csv).
+// `read_particle_snapshot` picks the reader by the file's extension (.h5part/.h5/.hdf5, or .csv); an HDF5 file
+// in PySPH's own output layout (core/io/pysph_output.hpp) is read as PySPH wrote it.
 // Every reader refuses a missing or unreadable file, missing columns, arrays of unequal length, non-finite
 // values, non-positive masses and negative phases with a ConfigError naming the file (and the line of a CSV).
 #include <string>

@@ -1,0 +1,153 @@
+"""Side by side: closurelab's direct SPH against the PySPH peer model (tests/peer/poiseuille_pysph.py) on the
+same square box of the poiseuille-uniform scene (n_x = n_y), interleaved A, B, A, B ... per size and thread
+count, printing each pair's ratio (PySPH seconds per step / closurelab seconds per step) and their spread.
+
+  /usr/bin/python3 scripts/peer_bench.py [--closurelab build/experiments/closurelab] [--sizes 48 96]
+                                         [--threads 1 2] [--pairs 3] [--steps 200] [--out FILE]
+
+What is timed: closurelab's SPH run (the row's cost.wall_seconds: the time loop, not the process start, the
+scene set-up or the averaging), and PySPH's "Run took" (its solver loop with the first and last dump, not the
+start of Python, the particle set-up or the compile of the equations, which is cached after the first run).
+Both run the same steps (t = steps x 0.25 eps'^2) on the same particles. PySPH runs serial on one thread (its
+fastest there) and --openmp with OMP_NUM_THREADS on more, with --cache-nnps (its neighbours found once per
+evaluation and reused by the three equation groups: PySPH's best case); closurelab with OMP_NUM_THREADS.
+The machine is shared: record `uptime` with the results, and read the ratios of one pair, A and B seconds
+apart, rather than either time alone.
+"""
+
+import argparse
+import json
+import os
+import platform
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+peer = os.path.join(root, "tests", "peer", "poiseuille_pysph.py")
+
+
+def uptime():
+    try:
+        return subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip()
+    except OSError:
+        return "(uptime not available)"
+
+
+def run_closurelab(exe, ny, steps, threads, work):
+    dt = 0.25 * (1.0 / ny) ** 2
+    spec = {"name": "bench", "kind": "direct_sph_validation",
+            "base": {"scene": {"name": "poiseuille-uniform", "n_y": ny, "n_x": ny},
+                     "kernel": {"name": "gaussian"},
+                     "solver": {"mode": "target_time", "target_time": steps * dt, "max_time": steps * dt}}}
+    d = tempfile.mkdtemp(dir=work)
+    with open(os.path.join(d, "spec.json"), "w") as f:
+        json.dump(spec, f)
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads))
+    p = subprocess.run([exe, "run", os.path.join(d, "spec.json"), "--out", os.path.join(d, "out"), "--store",
+                        os.path.join(d, "store"), "--force"], capture_output=True, text=True, env=env)
+    if p.returncode != 0:
+        raise SystemExit("closurelab failed:\n" + p.stderr[-3000:])
+    with open(os.path.join(d, "out", "bench.json")) as f:
+        row = json.load(f)["rows"][0]
+    shutil.rmtree(d, ignore_errors=True)
+    cost = row["cost"]
+    sph = cost.get("direct_sph", cost)
+    return float(sph["wall_seconds"]), int(sph["steps"]), float(sph["particle_steps"])
+
+
+def run_pysph(ny, steps, threads, work):
+    dt = 0.25 * (1.0 / ny) ** 2
+    d = tempfile.mkdtemp(dir=work)
+    cmd = [sys.executable, peer, "--ny", str(ny), "--nx", str(ny), "--tf", repr(steps * dt), "-d", d, "--cache-nnps"]
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads))
+    if threads > 1:
+        cmd.append("--openmp")
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=work)
+    if p.returncode != 0:
+        raise SystemExit("PySPH failed:\n" + p.stdout[-3000:] + p.stderr[-3000:])
+    m = re.search(r"Run took: ([0-9.eE+-]+) secs", p.stdout)
+    last = max(int(f.rsplit("_", 1)[1].split(".")[0]) for f in os.listdir(d) if f.endswith((".hdf5", ".npz")))
+    shutil.rmtree(d, ignore_errors=True)
+    return float(m.group(1)), last  # the last dump is named by its iteration: the steps run
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--closurelab", default=os.path.join(root, "build", "experiments", "closurelab"))
+    ap.add_argument("--sizes", type=int, nargs="+", default=[48, 96])
+    ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--pairs", type=int, default=3)
+    ap.add_argument("--steps", type=int, default=200)
+    ap.add_argument("--out", help="also write the report to this file")
+    a = ap.parse_args()
+
+    lines = []
+
+    def say(s):
+        print(s, flush=True)
+        lines.append(s)
+
+    commit = subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"], capture_output=True,
+                            text=True).stdout.strip()
+    dirty = subprocess.run(["git", "-C", root, "status", "--porcelain", "--untracked-files=no"], capture_output=True,
+                           text=True).stdout.strip()
+    say("# peer benchmark: closurelab (A) against the PySPH peer model (B), square box of poiseuille-uniform")
+    say("# command: %s %s" % (sys.executable, " ".join(sys.argv)))
+    say("# commit %s%s; %s; python %s; %s" % (commit, " (dirty)" if dirty else "", platform.node(),
+                                              platform.python_version(), date()))
+    say("# cpu: %s, %d logical cores" % (cpu_model(), os.cpu_count()))
+    say("# load before: %s" % uptime())
+    work = tempfile.mkdtemp(prefix="closurelab_peer_bench_")
+    try:
+        # PySPH's compile (cached afterwards) outside the timings.
+        for t in sorted(set(a.threads)):
+            run_pysph(a.sizes[0], 2, t, work)
+        summary = []
+        for ny in a.sizes:
+            for t in a.threads:
+                ratios = []
+                say("n_y = n_x = %d (%d particles), %d thread(s), %d steps:" % (ny, ny * ny, t, a.steps))
+                for k in range(a.pairs):
+                    ca, steps, particle_steps = run_closurelab(a.closurelab, ny, a.steps, t, work)
+                    pb, pysph_steps = run_pysph(ny, a.steps, t, work)
+                    if pysph_steps != steps:
+                        raise SystemExit("step counts differ: closurelab %d, PySPH %d" % (steps, pysph_steps))
+                    r = pb / ca
+                    ratios.append(r)
+                    say("  pair %d: closurelab %.4f s (%.3g particle-steps/s), PySPH %.4f s: ratio %.2f"
+                        % (k + 1, ca, particle_steps / ca, pb, r))
+                med = statistics.median(ratios)
+                say("  ratio median %.2f, range %.2f-%.2f (%d pairs)" % (med, min(ratios), max(ratios), len(ratios)))
+                summary.append((ny, t, med, min(ratios), max(ratios)))
+        say("# summary (PySPH time / closurelab time per step, same particles and steps):")
+        for ny, t, med, lo, hi in summary:
+            say("#   n_y = %d, %d thread(s): %.2f (%.2f-%.2f)" % (ny, t, med, lo, hi))
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    say("# load after: %s" % uptime())
+    if a.out:
+        with open(a.out, "w") as f:
+            f.write("\n".join(lines) + "\n")
+
+
+def date():
+    return time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime())
+
+
+def cpu_model():
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+if __name__ == "__main__":
+    main()

@@ -101,12 +101,17 @@ class AveragingKernel;
 class Deconvolver;
 class StressQuadrature;
 struct Scene;
+class ExperimentKind;
 
 struct Registry {
   Family<AveragingKernel> kernels{"kernel"};
   Family<Deconvolver> deconvolvers{"deconvolver"};
   Family<StressQuadrature> quadratures{"quadrature"};
   Family<Scene> scenes{"scene"};
+  // Experiment kinds beyond the built-ins, added by a user's registration hook with add_experiment_kind
+  // (experiments/kinds/experiment_kind.hpp; an experiment kind is a stateless object, held here whole). The
+  // runner finds a kind here or among the built-ins (find_experiment_kind with the registry).
+  std::vector<std::shared_ptr<const ExperimentKind>> experiment_kinds;
 
   std::vector<const FamilyBase*> families() const { return {&kernels, &deconvolvers, &quadratures, &scenes}; }
 };

@@ -1,3 +1,5 @@
+#include <stdexcept>
+
 #include "core/base/errors.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/kinds/quadrature_convergence.hpp"
@@ -33,13 +35,43 @@ double ExperimentKind::expected_cost(const json& resolved) const {
   return n_y * n_y * n_y * positive(solver, to_time ? "target_time" : "max_time");
 }
 
-const ExperimentKind& find_experiment_kind(const std::string& name, const std::string& path) {
+namespace {
+
+const ExperimentKind& find_among(const std::vector<const ExperimentKind*>& kinds, const std::string& name,
+                                 const std::string& path) {
   std::string known;
-  for (const auto& k : experiment_kinds()) {
+  for (const ExperimentKind* k : kinds) {
     if (k->name() == name) return *k;
     known += (known.empty() ? "" : ", ") + k->name();
   }
   throw ConfigError(path, "unknown experiment kind '" + name + "'; known: " + known);
+}
+
+}  // namespace
+
+const ExperimentKind& find_experiment_kind(const std::string& name, const std::string& path) {
+  std::vector<const ExperimentKind*> builtins;
+  for (const auto& k : experiment_kinds()) builtins.push_back(k.get());
+  return find_among(builtins, name, path);
+}
+
+void add_experiment_kind(Registry& registry, std::unique_ptr<ExperimentKind> kind) {
+  if (!kind) throw std::logic_error("registry: add_experiment_kind needs a kind");
+  for (const ExperimentKind* k : known_experiment_kinds(registry))
+    if (k->name() == kind->name())
+      throw std::logic_error("registry: experiment '" + kind->name() + "' is registered twice");
+  registry.experiment_kinds.push_back(std::move(kind));
+}
+
+std::vector<const ExperimentKind*> known_experiment_kinds(const Registry& registry) {
+  std::vector<const ExperimentKind*> kinds;
+  for (const auto& k : experiment_kinds()) kinds.push_back(k.get());
+  for (const auto& k : registry.experiment_kinds) kinds.push_back(k.get());
+  return kinds;
+}
+
+const ExperimentKind& find_experiment_kind(const Registry& registry, const std::string& name, const std::string& path) {
+  return find_among(known_experiment_kinds(registry), name, path);
 }
 
 }  // namespace closurelab

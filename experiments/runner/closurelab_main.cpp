@@ -125,7 +125,7 @@ int list_command(int argc, char** argv, const Registry& reg) {
   if (want.empty() || want == "experiment") {
     any = true;
     std::cout << "experiment:\n";
-    for (const auto& k : experiment_kinds()) {
+    for (const ExperimentKind* k : known_experiment_kinds(reg)) {
       std::cout << "  " << k->name() << " - " << k->description() << "\n";
       for (const auto& s : k->sections()) {
         std::cout << "      " << s.key << ": " << s.description;

@@ -7,6 +7,7 @@
 
 #include "tests/support/cli_run.hpp"
 #include "core/closure/deconvolver.hpp"
+#include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/runner/closurelab_main.hpp"
 
 using namespace closurelab;
@@ -78,4 +79,53 @@ TEST(UserRegistration, ANameRegisteredTwiceIsAnError) {
   EXPECT_EQ(c.rc, 1);
   EXPECT_NE(c.err.find("deconvolver 'cgls' is registered twice"), std::string::npos) << c.err;
   EXPECT_EQ(c.err.back(), '\n');
+}
+
+namespace {
+
+// A user's experiment kind: one section with one parameter, a row that echoes it.
+class EchoKind : public ExperimentKind {
+ public:
+  std::string name() const override { return "my_echo"; }
+  std::string description() const override { return "a user's experiment kind (echoes its value)"; }
+  std::vector<KindSection> sections() const override {
+    return {{"echo", "what to echo", "", {number_param("value", 1.0, "the value echoed into errors.value")}}};
+  }
+  json resolve(const json& cell, const std::string& path, const Registry&) const override {
+    for (const auto& [k, v] : cell.items())
+      if (k != "echo") throw ConfigError(path + "/" + k, "unknown key; allowed: echo");
+    return {{"echo", resolve_params(cell.value("echo", json::object()), sections()[0].params, path + "/echo", {})}};
+  }
+  json run(const json& cfg, const Registry&, const ProgressFn&) const override {
+    return {{"status", "ok"}, {"errors", {{"value", cfg.at("echo").at("value")}}}, {"cost", json::object()}};
+  }
+};
+
+void register_echo(Registry& r) { add_experiment_kind(r, std::make_unique<EchoKind>()); }
+
+}  // namespace
+
+TEST(UserRegistration, AUsersExperimentKindIsListedAndRuns) {
+  const Captured list = run_main({"list", "experiment"}, register_echo);
+  EXPECT_EQ(list.rc, 0) << list.err;
+  EXPECT_NE(list.out.find("my_echo - a user's experiment kind"), std::string::npos) << list.out;
+  EXPECT_NE(list.out.find("reduced_model - "), std::string::npos) << list.out;
+  const auto work = closurelab::testing::fresh_work_folder("user_kind");
+  closurelab::testing::write_text(work / "spec.json", R"({"name": "echo", "kind": "my_echo",
+    "base": {}, "axes": {"echo.value": [2.5, 4.0]}})");
+  const Captured c = run_main({"run", (work / "spec.json").string(), "--out", (work / "out").string()}, register_echo);
+  EXPECT_EQ(c.rc, 0) << c.err;
+  const json table = json::parse(closurelab::testing::read_text(work / "out" / "echo.json"));
+  ASSERT_EQ(table.at("rows").size(), 2u);
+  EXPECT_EQ(table["rows"][1]["errors"]["value"], 4.0);
+  // Without the hook the kind is unknown (exit 2, the known kinds named); a built-in's name is refused (exit 1).
+  const Captured stock = run_main({"run", (work / "spec.json").string(), "--out", (work / "out2").string()}, {});
+  EXPECT_EQ(stock.rc, 2);
+  EXPECT_NE(stock.err.find("unknown experiment kind 'my_echo'"), std::string::npos) << stock.err;
+  struct Clash : EchoKind {
+    std::string name() const override { return "reduced_model"; }
+  };
+  const Captured twice = run_main({"list"}, [](Registry& r) { add_experiment_kind(r, std::make_unique<Clash>()); });
+  EXPECT_EQ(twice.rc, 1);
+  EXPECT_NE(twice.err.find("experiment 'reduced_model' is registered twice"), std::string::npos) << twice.err;
 }

@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -121,6 +122,9 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
                      {"resolved", matrix->resolved[i]}});
   double computed_seconds = 0.0, first_seconds = 0.0;  // the first computed cell may carry shared work
   std::string write_error;
+  const auto run_start = std::chrono::steady_clock::now();
+  auto run_clock = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count(); };
+  PartialTableSchedule table_schedule;
   schedule_cells(
       tasks, jobs, threads_per_job, registry, provenance_here, group, [&](const CellTask& t, const json& row) {
         const std::size_t i = t.at("index").get<std::size_t>();
@@ -134,8 +138,13 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
           else
             computed_seconds += secs;
           ++finished;
-          if (!shard.active())
+          // The partial table, rewritten only as often as PartialTableSchedule allows (linear in the cells); the
+          // final table is written below.
+          if (!shard.active() && table_schedule.due(run_clock())) {
+            const double w0 = run_clock();
             write_table(table_file, make_table(spec, options.spec_file, finished_rows(), false), true);
+            table_schedule.written(w0, run_clock());
+          }
         } catch (const std::exception& e) {
           write_error = e.what();
           return false;

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 
 namespace closurelab {
 
@@ -66,6 +67,11 @@ bool read_dataset(hid_t group, const std::string& name, hid_t mem_type, std::vec
     throw ConfigError("", where + "/" + name + ": not a one-dimensional dataset");
   hsize_t n = 0;
   H5Sget_simple_extent_dims(space.get(), &n, nullptr);
+  // A header may declare any size (1e12 particles ended in a bare std::bad_alloc): the declared size is
+  // bounded before anything is allocated. A snapshot's particles then cost about kBytesPerParticle each in the
+  // closure's pair sums, which read_step checks on `x` first.
+  check_allocation(static_cast<double>(n), static_cast<double>(sizeof(T)),
+                   where + "/" + name + ": " + std::to_string(n) + " values");
   out.assign(static_cast<std::size_t>(n), T{});
   if (n > 0 && H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw ConfigError("", where + "/" + name + ": cannot read (truncated or corrupt file?)");
@@ -180,10 +186,31 @@ ParticleSnapshot read_step(hid_t f, long long k, const std::string& file) {
       throw ConfigError("", where + ": unreadable attribute TimeValue");
   }
   ParticleSystem& p = s.particles;
+  if (H5Lexists(g.get(), "x", H5P_DEFAULT) > 0) {  // the particle count the file declares, bounded first
+    Handle set(H5Dopen2(g.get(), "x", H5P_DEFAULT), H5Dclose);
+    Handle space(set.ok() ? H5Dget_space(set.get()) : -1, H5Sclose);
+    hsize_t n = 0;
+    if (space.ok() && H5Sget_simple_extent_ndims(space.get()) == 1) H5Sget_simple_extent_dims(space.get(), &n, nullptr);
+    check_allocation(static_cast<double>(n), kBytesPerParticle,
+                     where + "/x: a snapshot of " + std::to_string(n) + " particles");
+  }
   for (auto [name, v] : {std::pair{"x", &p.x}, {"y", &p.y}, {"vx", &p.vx}, {"vy", &p.vy}, {"mass", &p.mass}})
     if (!read_dataset(g.get(), name, H5T_NATIVE_DOUBLE, *v, where))
       throw ConfigError("", where + ": no dataset '" + std::string(name) + "' (needed: x, y, vx, vy, mass)");
-  if (!read_dataset(g.get(), "phase", H5T_NATIVE_INT, p.phase, where)) p.phase.assign(p.x.size(), 0);
+  // Phases are read as doubles and checked: HDF5's conversion to int truncates 0.5 to 0 and clips 2^63 to
+  // 2147483647 without a word.
+  std::vector<double> phase;
+  if (read_dataset(g.get(), "phase", H5T_NATIVE_DOUBLE, phase, where)) {
+    p.phase.resize(phase.size());
+    for (std::size_t k = 0; k < phase.size(); ++k) {
+      if (!(phase[k] >= 0 && phase[k] <= 2147483647.0 && phase[k] == std::floor(phase[k])))
+        throw ConfigError("", where + "/phase: entry " + std::to_string(k) + " = " + short_number(phase[k]) +
+                                  " is not a phase index (an integer from 0 to 2147483647)");
+      p.phase[k] = static_cast<int>(phase[k]);
+    }
+  } else {
+    p.phase.assign(p.x.size(), 0);
+  }
   s.has_fixed = read_dataset(g.get(), "fixed", H5T_NATIVE_UINT8, p.fixed, where);
   if (!s.has_fixed) p.fixed.assign(p.x.size(), 0);
   check_particles(p, where);

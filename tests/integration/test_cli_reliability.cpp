@@ -203,3 +203,40 @@ TEST(CliReliability, HugeFiniteSnapshotVelocitiesGiveFiniteNorms) {
     if (row["status"] == "ok") EXPECT_EQ(o.code, 0);
   }
 }
+
+// Smaller items (HDF5): a file declaring 1e12 particles was a bare std::bad_alloc; a phase of 0.5 was read as 0
+// and a uint64 of 2^63 as 2147483647. Now: refused with the file, step and dataset named.
+TEST(CliReliability, H5PartDeclaredSizesAndPhasesAreChecked) {
+  const fs::path work = fresh_work_folder("cli_h5part_checks");
+  const std::string py = h5py_python(work);
+  if (py.empty()) GTEST_SKIP() << "python3-h5py not installed";
+  auto write = [&](const std::string& file, const std::string& body) {
+    write_text(work / "w.py", "import h5py, numpy as np\nwith h5py.File('" + (work / file).string() +
+                                  "', 'w') as h:\n  g = h.create_group('Step#0')\n" + body);
+    ASSERT_EQ(run_shell(work, py + " " + (work / "w.py").string()).code, 0);
+  };
+  const std::string two = "  for k in ['x', 'y', 'vx', 'vy', 'mass']: g[k] = np.array([0.5, 1.0])\n";
+  write("huge.h5part", "  g.create_dataset('x', shape=(10**12,), dtype='f8', chunks=(1024,))\n");
+  write("half.h5part", two + "  g['phase'] = np.array([0.0, 0.5])\n");
+  write("big.h5part", two + "  g['phase'] = np.array([0, 2**63], dtype=np.uint64)\n");
+  write("ok.h5part", two + "  g['phase'] = np.array([0, 3], dtype=np.int64)\n");
+  using namespace closurelab;
+  auto refusal = [&](const std::string& file) {
+    try {
+      read_h5part((work / file).string());
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  std::string m = refusal("huge.h5part");
+  EXPECT_NE(m.find("Step#0/x"), std::string::npos) << m;
+  EXPECT_NE(m.find("memory limit"), std::string::npos) << m;
+  m = refusal("half.h5part");
+  EXPECT_NE(m.find("Step#0/phase: entry 1 = 0.5"), std::string::npos) << m;
+  m = refusal("big.h5part");
+  EXPECT_NE(m.find("Step#0/phase: entry 1"), std::string::npos) << m;
+  const ParticleSnapshot s = read_h5part((work / "ok.h5part").string());
+  ASSERT_EQ(s.particles.phase.size(), 2u);
+  EXPECT_EQ(s.particles.phase[1], 3);
+}

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "core/base/errors.hpp"
+#include "core/base/run_progress.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/runner/cell_scheduler.hpp"
 #include "experiments/runner/out_folder.hpp"
@@ -23,16 +24,7 @@ namespace closurelab {
 
 namespace {
 
-std::string format_seconds(double s) {
-  char buf[32];
-  if (s < 90)
-    std::snprintf(buf, sizeof buf, "%.0f s", s);
-  else if (s < 5400)
-    std::snprintf(buf, sizeof buf, "%.1f min", s / 60);
-  else
-    std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
-  return buf;
-}
+std::string format_seconds(double s) { return format_duration(s); }  // core/base/run_progress.hpp
 
 // Rank 0's part of a run, from the folder check to the table; the other ranks are served (and finally released)
 // by schedule_cells. Every early return releases them with an empty schedule first.

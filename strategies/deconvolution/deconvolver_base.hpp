@@ -93,7 +93,8 @@ class DeconvolverBase : public Deconvolver {
       q.parameter = unscale_parameter(p.parameter);
       q.residual_norm = std::ldexp(p.residual_norm, m);
       q.solution_norm = std::ldexp(p.solution_norm, xs);
-      if (p.gcv >= 0) q.gcv = std::ldexp(p.gcv, 2 * m);
+      // q.gcv stays in the scaled problem's units: a factor 2^(2m) common to the whole scan, which leaves its
+      // minimizer as it is, and which would overflow for data of 1e200 (the rule then found no finite GCV value).
       q.solution = [&p, xs] { return times_power_of_two(p.solution(), xs); };
       return visit(q);
     });

@@ -175,3 +175,25 @@ TEST(DeconvReliability, ARescaledOperatorKeepsItsLinkWeights) {
   EXPECT_GT((unweighted.x - plain.x).norm(), 1e-2 * plain.x.norm());  // the weights matter here
   EXPECT_LT((std::ldexp(1.0, 40) * scaled.x - plain.x).norm(), 1e-10 * plain.x.norm());
 }
+
+// Item 1: GCV on data of 1e200 had every GCV value overflow when unscaled (r^2 ~ 1e400), so the rule found none
+// ("cannot evaluate the GCV function"). The minimizer is scale-free: the same alpha as for the data / 1e200.
+TEST(DeconvReliability, GcvOnHugeDataPicksTheSameParameter) {
+  const int n = 16;
+  Eigen::MatrixXd m(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) m(i, j) = std::exp(-0.3 * (i - j) * (i - j));
+  const ForwardOperator a = ForwardOperator::from_dense(m);
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::sin(0.4 * i) + 1e-3 * std::cos(7.0 * i);
+  for (const std::string method : {"tikhonov", "tsvd"}) {
+    SCOPED_TRACE(method);
+    const json cfg = {{"name", method}, {"rule", "gcv"}};
+    const DeconvolutionResult plain = solve(cfg, a, b);
+    const DeconvolutionResult huge = solve(cfg, a, 1e200 * b);
+    ASSERT_EQ(plain.status, DeconvolutionStatus::converged) << plain.stats.message;
+    ASSERT_EQ(huge.status, DeconvolutionStatus::converged) << huge.stats.message;
+    EXPECT_EQ(huge.stats.chosen_parameter, plain.stats.chosen_parameter);
+    EXPECT_LT((huge.x / 1e200 - plain.x).norm(), 1e-12 * plain.x.norm());
+  }
+}

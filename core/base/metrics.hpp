@@ -1,5 +1,7 @@
 #pragma once
-// Error norms for comparing a solution with a reference, over a subset of points.
+// Error norms for comparing a solution with a reference, over a subset of points. Every norm is computed
+// without overflow or underflow: the plain sum of squares where it is safe (bit for bit as before), else the
+// same sum scaled by the largest magnitude (finite data of 1e200 gives a finite relative error, not 0 or NaN).
 #include <Eigen/Core>
 #include <vector>
 
@@ -28,6 +30,10 @@ ErrorNorms vector_error_norms(const Eigen::VectorXd& ux, const Eigen::VectorXd& 
 // ‖a − ref‖₂ / ‖ref‖₂ (0 when ref vanishes), "nodes": the count}, over the nodes where mask is true.
 json node_error_summary(const Eigen::VectorXd& a, const Eigen::VectorXd& ref, const std::vector<bool>& mask,
                         double scale);
+
+// ‖v‖₂ without overflow or underflow: v.norm() when its sum of squares is safely in range (the common case,
+// bit for bit), else Eigen's scaled stableNorm(). Non-finite entries give a non-finite norm.
+double robust_norm(const Eigen::VectorXd& v);
 
 // The paper's §7 metric: relative difference of the peak values, (max u − max ref) / max ref.
 double peak_relative_difference(const Eigen::VectorXd& u, const Eigen::VectorXd& ref);

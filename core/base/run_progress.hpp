@@ -11,6 +11,25 @@
 
 namespace closurelab {
 
+// A duration for progress lines in readable units: "42 s", "3.5 min", "2.1 h", "4.2 days", "3.1e+80 years" (an
+// extreme parameter once printed an 80-digit number of seconds); "an unknown time" when not finite.
+inline std::string format_duration(double seconds) {
+  char buf[48];
+  const double s = seconds;
+  if (!std::isfinite(s) || s < 0) return "an unknown time";
+  if (s < 90)
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 5400)
+    std::snprintf(buf, sizeof buf, "%.1f min", s / 60);
+  else if (s < 48 * 3600.0)
+    std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
+  else if (s < 730 * 86400.0)
+    std::snprintf(buf, sizeof buf, "%.1f days", s / 86400);
+  else
+    std::snprintf(buf, sizeof buf, "%.3g years", s / (365.25 * 86400));
+  return buf;
+}
+
 struct ProgressEstimate {
   double fraction = 0.0;      // in [0, 1]
   double seconds_left = -1;   // < 0: not known yet
@@ -47,13 +66,9 @@ class RunProgress {
   }
 
   static std::string describe(const ProgressEstimate& e) {
-    char buf[96];
-    if (e.seconds_left < 0) {
-      std::snprintf(buf, sizeof buf, "%.0f %% done", 100 * e.fraction);
-    } else {
-      std::snprintf(buf, sizeof buf, "%.0f %% done, about %.0f s left", 100 * e.fraction, e.seconds_left);
-    }
-    return buf;
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.0f %% done", 100 * e.fraction);
+    return e.seconds_left < 0 ? std::string(buf) : std::string(buf) + ", about " + format_duration(e.seconds_left) + " left";
   }
 
  private:

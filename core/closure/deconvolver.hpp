@@ -53,7 +53,8 @@ struct ScanPoint {
   double parameter = 0.0;
   double residual_norm = 0.0;          // ‖b − A x‖₂
   double solution_norm = 0.0;          // ‖x‖₂
-  double gcv = -1.0;                   // GCV function value where the method can compute it, else < 0
+  double gcv = -1.0;                   // GCV function value where the method can compute it, else < 0; up to a
+                                       // positive factor common to one scan (badly scaled data are scanned scaled)
   long matvecs = 0;                    // products with A or Aᵀ spent so far in this scan
   bool last = false;                   // no further member will be visited
   std::string issue;                   // non-empty: a numerical issue detected here (e.g. a growing mode)

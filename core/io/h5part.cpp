@@ -2,12 +2,16 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <mutex>
 #include <stdexcept>
 #include <utility>
 
 #include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 
 namespace closurelab {
 
@@ -39,7 +43,7 @@ class Handle {
 
 void silence_hdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }  // errors become exceptions here
 
-std::string step_name(int k) { return "Step#" + std::to_string(k); }
+std::string step_name(long long k) { return "Step#" + std::to_string(k); }
 
 template <class T>
 void write_dataset(hid_t group, const char* name, const std::vector<T>& data, hid_t file_type, hid_t mem_type,
@@ -63,6 +67,11 @@ bool read_dataset(hid_t group, const std::string& name, hid_t mem_type, std::vec
     throw ConfigError("", where + "/" + name + ": not a one-dimensional dataset");
   hsize_t n = 0;
   H5Sget_simple_extent_dims(space.get(), &n, nullptr);
+  // A header may declare any size (1e12 particles ended in a bare std::bad_alloc): the declared size is
+  // bounded before anything is allocated. A snapshot's particles then cost about kBytesPerParticle each in the
+  // closure's pair sums, which read_step checks on `x` first.
+  check_allocation(static_cast<double>(n), static_cast<double>(sizeof(T)),
+                   where + "/" + name + ": " + std::to_string(n) + " values");
   out.assign(static_cast<std::size_t>(n), T{});
   if (n > 0 && H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw ConfigError("", where + "/" + name + ": cannot read (truncated or corrupt file?)");
@@ -78,13 +87,95 @@ Handle open_for_reading(const std::string& file) {
   return f;
 }
 
-int count_steps(hid_t f) {
-  int k = 0;
-  while (H5Lexists(f, step_name(k).c_str(), H5P_DEFAULT) > 0) ++k;
-  return k;
+// The Step#N links of the root group, by increasing N, with their TimeValue where the group has one.
+std::vector<H5PartStep> list_steps(hid_t f, const std::string& file) {
+  std::vector<H5PartStep> steps;
+  auto visit = [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+    const std::string n = name;
+    const std::string digits = n.size() > 5 && n.compare(0, 5, "Step#") == 0 ? n.substr(5) : "";
+    if (!digits.empty() && digits.size() <= 18 && digits.find_first_not_of("0123456789") == std::string::npos) {
+      H5PartStep s;
+      s.number = std::stoll(digits);
+      s.group = n;
+      static_cast<std::vector<H5PartStep>*>(data)->push_back(s);
+    }
+    return 0;
+  };
+  hsize_t at = 0;
+  if (H5Literate(f, H5_INDEX_NAME, H5_ITER_NATIVE, &at, visit, &steps) < 0)
+    throw ConfigError("", "'" + file + "': cannot list its groups (truncated or corrupt file?)");
+  std::sort(steps.begin(), steps.end(), [](const H5PartStep& a, const H5PartStep& b) { return a.number < b.number; });
+  for (std::size_t i = 1; i < steps.size(); ++i)
+    if (steps[i].number == steps[i - 1].number)
+      throw ConfigError("", "'" + file + "': groups '" + steps[i - 1].group + "' and '" + steps[i].group +
+                                "' both name step " + std::to_string(steps[i].number) + "; which one is meant is ambiguous");
+  for (auto& s : steps) {
+    if (H5Aexists_by_name(f, s.group.c_str(), "TimeValue", H5P_DEFAULT) <= 0) continue;
+    Handle a(H5Aopen_by_name(f, s.group.c_str(), "TimeValue", H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+    s.has_time = a.ok() && H5Aread(a.get(), H5T_NATIVE_DOUBLE, &s.time) >= 0 && std::isfinite(s.time);
+  }
+  return steps;
 }
 
-ParticleSnapshot read_step(hid_t f, int k, const std::string& file) {
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+// "3 steps: Step#0 (t = 0), Step#10 (t = 0.1), Step#20 (t = 0.2)", at most 8 listed.
+std::string describe_steps(const std::vector<H5PartStep>& steps) {
+  std::string d = std::to_string(steps.size()) + (steps.size() == 1 ? " step: " : " steps: ");
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    if (i == 6 && steps.size() > 8) {
+      d += ", ...";
+      i = steps.size() - 2;
+      continue;
+    }
+    d += (i == 0 ? "" : ", ") + steps[i].group + (steps[i].has_time ? " (t = " + short_number(steps[i].time) + ")" : "");
+  }
+  return d;
+}
+
+long long select_step(const std::vector<H5PartStep>& steps, H5PartStepBy by, long long value, double time,
+                      const std::string& file) {
+  if (steps.empty()) throw ConfigError("", "'" + file + "' holds no H5Part step (no group Step#N)");
+  const std::string have = "'" + file + "' has " + describe_steps(steps);
+  const std::string how = "; pick one by its number (step), by its place (step_by index, 0.." +
+                          std::to_string(steps.size() - 1) + ") or by its time (step_by time)";
+  switch (by) {
+    case H5PartStepBy::number:
+      if (value == -1) return steps.back().number;
+      for (const auto& s : steps)
+        if (s.number == value) return value;
+      throw ConfigError("", have + "; there is no Step#" + std::to_string(value) + how);
+    case H5PartStepBy::index:
+      if (value == -1) return steps.back().number;
+      if (value < 0 || value >= static_cast<long long>(steps.size()))
+        throw ConfigError("", have + "; index " + std::to_string(value) + " is out of range" + how);
+      return steps[static_cast<std::size_t>(value)].number;
+    case H5PartStepBy::time: {
+      std::vector<const H5PartStep*> match;
+      const H5PartStep* nearest = nullptr;
+      for (const auto& s : steps) {
+        if (!s.has_time) continue;
+        if (std::abs(s.time - time) <= 1e-9 * std::max(std::abs(s.time), std::abs(time))) match.push_back(&s);
+        if (!nearest || std::abs(s.time - time) < std::abs(nearest->time - time)) nearest = &s;
+      }
+      if (match.size() == 1) return match[0]->number;
+      if (match.size() > 1)
+        throw ConfigError("", have + "; " + std::to_string(match.size()) + " steps have TimeValue " +
+                                  short_number(time) + " (" + match[0]->group + ", " + match[1]->group +
+                                  "): ambiguous; pick one by its number (step)");
+      throw ConfigError("", have + "; none has TimeValue " + short_number(time) +
+                                (nearest ? " (the nearest is " + nearest->group + " at t = " + short_number(nearest->time) + ")"
+                                         : " (no step has a TimeValue)") + how);
+    }
+  }
+  return steps.back().number;
+}
+
+ParticleSnapshot read_step(hid_t f, long long k, const std::string& file) {
   const std::string where = file + ":" + step_name(k);
   Handle g(H5Gopen2(f, step_name(k).c_str(), H5P_DEFAULT), H5Gclose);
   if (!g.ok()) throw ConfigError("", where + ": not a readable group");
@@ -95,10 +186,31 @@ ParticleSnapshot read_step(hid_t f, int k, const std::string& file) {
       throw ConfigError("", where + ": unreadable attribute TimeValue");
   }
   ParticleSystem& p = s.particles;
+  if (H5Lexists(g.get(), "x", H5P_DEFAULT) > 0) {  // the particle count the file declares, bounded first
+    Handle set(H5Dopen2(g.get(), "x", H5P_DEFAULT), H5Dclose);
+    Handle space(set.ok() ? H5Dget_space(set.get()) : -1, H5Sclose);
+    hsize_t n = 0;
+    if (space.ok() && H5Sget_simple_extent_ndims(space.get()) == 1) H5Sget_simple_extent_dims(space.get(), &n, nullptr);
+    check_allocation(static_cast<double>(n), kBytesPerParticle,
+                     where + "/x: a snapshot of " + std::to_string(n) + " particles");
+  }
   for (auto [name, v] : {std::pair{"x", &p.x}, {"y", &p.y}, {"vx", &p.vx}, {"vy", &p.vy}, {"mass", &p.mass}})
     if (!read_dataset(g.get(), name, H5T_NATIVE_DOUBLE, *v, where))
       throw ConfigError("", where + ": no dataset '" + std::string(name) + "' (needed: x, y, vx, vy, mass)");
-  if (!read_dataset(g.get(), "phase", H5T_NATIVE_INT, p.phase, where)) p.phase.assign(p.x.size(), 0);
+  // Phases are read as doubles and checked: HDF5's conversion to int truncates 0.5 to 0 and clips 2^63 to
+  // 2147483647 without a word.
+  std::vector<double> phase;
+  if (read_dataset(g.get(), "phase", H5T_NATIVE_DOUBLE, phase, where)) {
+    p.phase.resize(phase.size());
+    for (std::size_t k = 0; k < phase.size(); ++k) {
+      if (!(phase[k] >= 0 && phase[k] <= 2147483647.0 && phase[k] == std::floor(phase[k])))
+        throw ConfigError("", where + "/phase: entry " + std::to_string(k) + " = " + short_number(phase[k]) +
+                                  " is not a phase index (an integer from 0 to 2147483647)");
+      p.phase[k] = static_cast<int>(phase[k]);
+    }
+  } else {
+    p.phase.assign(p.x.size(), 0);
+  }
   s.has_fixed = read_dataset(g.get(), "fixed", H5T_NATIVE_UINT8, p.fixed, where);
   if (!s.has_fixed) p.fixed.assign(p.x.size(), 0);
   check_particles(p, where);
@@ -131,29 +243,30 @@ void write_h5part(const std::string& file, const std::vector<ParticleSnapshot>& 
   if (H5Fflush(f.get(), H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error("cannot flush '" + file + "'");
 }
 
-int h5part_step_count(const std::string& file) {
+std::vector<H5PartStep> h5part_steps(const std::string& file) {
   std::lock_guard<std::mutex> lock(hdf5_mutex());
   const Handle f = open_for_reading(file);
-  return count_steps(f.get());
+  return list_steps(f.get(), file);
 }
 
-ParticleSnapshot read_h5part(const std::string& file, int step) {
+int h5part_step_count(const std::string& file) { return static_cast<int>(h5part_steps(file).size()); }
+
+long long h5part_select_step(const std::string& file, H5PartStepBy by, long long value, double time) {
+  return select_step(h5part_steps(file), by, value, time, file);
+}
+
+ParticleSnapshot read_h5part(const std::string& file, long long step) {
   std::lock_guard<std::mutex> lock(hdf5_mutex());
   const Handle f = open_for_reading(file);
-  const int n = count_steps(f.get());
-  if (n == 0) throw ConfigError("", "'" + file + "' holds no H5Part step (no group Step#0)");
-  if (step < -1 || step >= n)
-    throw ConfigError("", "'" + file + "' has " + std::to_string(n) + " steps; step " + std::to_string(step) +
-                              " does not exist (0.." + std::to_string(n - 1) + ", or -1 for the last)");
-  return read_step(f.get(), step < 0 ? n - 1 : step, file);
+  const long long number = select_step(list_steps(f.get(), file), H5PartStepBy::number, step, 0.0, file);
+  return read_step(f.get(), number, file);
 }
 
 std::vector<ParticleSnapshot> read_h5part_all(const std::string& file) {
   std::lock_guard<std::mutex> lock(hdf5_mutex());
   const Handle f = open_for_reading(file);
   std::vector<ParticleSnapshot> out;
-  const int n = count_steps(f.get());
-  for (int k = 0; k < n; ++k) out.push_back(read_step(f.get(), k, file));
+  for (const auto& s : list_steps(f.get(), file)) out.push_back(read_step(f.get(), s.number, file));
   return out;
 }
 

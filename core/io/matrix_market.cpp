@@ -181,7 +181,8 @@ void write_matrix_market(const std::string& file, const Eigen::MatrixXd& m) {
   out << std::setprecision(17);
   for (Eigen::Index j = 0; j < m.cols(); ++j)
     for (Eigen::Index i = 0; i < m.rows(); ++i) out << m(i, j) << "\n";
-  if (!out) throw ConfigError(file, "write failed");
+  out.close();  // the buffer's last write fails here (a full disk, /dev/full), not before
+  if (!out) throw ConfigError(file, "write failed (disk full or device error)");
 }
 
 void write_matrix_market(const std::string& file, const Eigen::SparseMatrix<double>& m) {
@@ -193,7 +194,8 @@ void write_matrix_market(const std::string& file, const Eigen::SparseMatrix<doub
   for (int k = 0; k < m.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(m, k); it; ++it)
       out << it.row() + 1 << " " << it.col() + 1 << " " << it.value() << "\n";
-  if (!out) throw ConfigError(file, "write failed");
+  out.close();  // the buffer's last write fails here (a full disk, /dev/full), not before
+  if (!out) throw ConfigError(file, "write failed (disk full or device error)");
 }
 
 }  // namespace closurelab

@@ -11,6 +11,7 @@
 #include "core/averaging/averaging.hpp"
 #include "core/closure/deconvolver.hpp"
 #include "core/base/errors.hpp"
+#include "core/reduced/implicit_closure.hpp"
 #include "core/reduced/meso_solver.hpp"
 #include "core/base/metrics.hpp"
 #include "core/closure/stress_quadrature.hpp"
@@ -79,6 +80,7 @@ class ReducedModel : public ExperimentKind {
     out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
     out["solver"] = resolve_section(cell, "solver", meso_solver_schema(), path);
     check_time_loop(out["solver"], path + "/solver");
+    check_implicit_closure(out["solver"], out["closure"]["deconvolver"], path);
     out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
@@ -18,6 +19,7 @@
 #include "core/closure/deconvolver.hpp"
 #include "core/closure/forward_operator.hpp"
 #include "core/closure/reconstruction.hpp"
+#include "core/io/h5part.hpp"
 #include "core/io/particle_snapshot.hpp"
 #include "core/reduced/reduced_grid.hpp"
 #include "core/sph/sph_engine.hpp"
@@ -31,7 +33,30 @@ namespace {
 ParamSchema snapshot_schema() {
   return {string_param("file", "", "particle file: .h5part/.h5/.hdf5 (H5Part layout) or .csv (x,y,vx,vy,mass,phase); "
                                    "a relative path is taken from the working folder"),
-          integer_param("step", -1, "H5Part step (-1: the last)", -1, {})};
+          integer_param("step", -1,
+                        "H5Part step: the number N of the group Step#N (-1: the last); with step_by index, its place "
+                        "among the steps the file has (0-based)",
+                        -1, {}),
+          string_param("step_by", "number",
+                       "how the H5Part step is picked: number (step = N of Step#N), index (step = its place, 0-based) "
+                       "or time (the one step whose TimeValue equals time)",
+                       {"number", "index", "time"}),
+          number_param("time", 0.0, "with step_by time: the TimeValue of the step to read (to 1e-9 relative)")};
+}
+
+// The step to read as read_particle_snapshot takes it: an H5Part file's group number (found by number, place or
+// time among the Step#N groups it has); a CSV file's one step.
+int snapshot_step(const std::string& file, const json& snapshot) {
+  const std::string by = snapshot.at("step_by").get<std::string>();
+  const int step = snapshot.at("step").get<int>();
+  const std::string ext = std::filesystem::path(file).extension().string();
+  const bool hdf5 = ext == ".h5part" || ext == ".h5" || ext == ".hdf5";
+  if (!hdf5 || by == "number") return step;
+  const long long number = h5part_select_step(file, by == "index" ? H5PartStepBy::index : H5PartStepBy::time, step,
+                                              snapshot.at("time").get<double>());
+  if (number > std::numeric_limits<int>::max())
+    throw ConfigError("", "'" + file + "': step number " + std::to_string(number) + " is beyond the reader's range");
+  return static_cast<int>(number);
 }
 
 ParamSchema closure_schema() {
@@ -107,6 +132,17 @@ class SnapshotClosure : public ExperimentKind {
     if (!scene->x_invariant) throw ConfigError(path + "/scene", "needs an x-invariant scene (column mesh)");
     auto kernel = build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["snapshot"] = resolve_section(cell, "snapshot", snapshot_schema(), path);
+    {  // one way of picking the step: `time` only with step_by time, and then no `step`
+      const json given = cell.contains("snapshot") && cell["snapshot"].is_object() ? cell["snapshot"] : json::object();
+      const std::string by = out["snapshot"]["step_by"].get<std::string>();
+      if (given.contains("time") && by != "time")
+        throw ConfigError(path + "/snapshot/time", "a time picks the step only with \"step_by\": \"time\"");
+      if (by == "time" && given.contains("step"))
+        throw ConfigError(path + "/snapshot/step", "ambiguous: with \"step_by\": \"time\" the step is picked by "
+                                                   "its time; give step or time, not both");
+      if (by == "time" && !given.contains("time"))
+        throw ConfigError(path + "/snapshot/time", "missing: \"step_by\": \"time\" needs the time of the step");
+    }
     const std::string file = out["snapshot"]["file"].get<std::string>();
     if (file.empty()) throw ConfigError(path + "/snapshot/file", "missing: name a .h5part or .csv particle file");
     std::error_code ec;
@@ -129,7 +165,7 @@ class SnapshotClosure : public ExperimentKind {
     progress("reading '" + file + "'");
     ParticleSnapshot snap;
     try {
-      snap = read_particle_snapshot(file, cfg.at("snapshot").at("step").get<int>());
+      snap = read_particle_snapshot(file, snapshot_step(file, cfg.at("snapshot")));
     } catch (const ConfigError& e) {
       throw ConfigError("/snapshot/file", e.message());
     }
@@ -198,6 +234,16 @@ class SnapshotClosure : public ExperimentKind {
                                     {"wall_band", node_error_summary(t_closure, t_exact, band, scale)},
                                     {"max_abs_exact", scale}}},
                      {"particle_velocity_max_rel", v_scale > 0 ? v_err / v_scale : 0.0}};
+    // A norm that is not a finite number (the data reached the edge of the double range) is no result.
+    for (const char* part : {"channel", "interior", "wall_band"})
+      for (const char* norm : {"max_rel", "l2_rel"}) {
+        const json& v = row["errors"]["stress_xy"][part][norm];
+        if (row["status"] == "ok" && v.is_number() && !std::isfinite(v.get<double>())) {
+          row["status"] = "numerical_issue";
+          row["message"] = std::string("non-finite stress error norm (") + part + "." + norm +
+                           "): the data exceed the range in which the norms can be computed";
+        }
+      }
     row["profile"] = {{"y", m.coarse.nodes()}, {"exact_xy", t_exact}, {"closure_xy", t_closure},
                       {"y_data", m.data.nodes()}, {"averaged_vx", b}};
     row["cost"] = {{"read_seconds", read_seconds},

@@ -8,6 +8,8 @@
 //   closurelab deconvolve --matrix A.mtx --rhs b.mtx [...]
 #include "experiments/runner/closurelab_main.hpp"
 
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -290,6 +292,17 @@ int merge_command(int argc, char** argv, const Registry& registry) {
 
 }  // namespace
 
+// A command's printed output must reach its reader: flushed and checked (stdout on a full disk or /dev/full is
+// an error, exit 1, not a silent success).
+int stdout_checked(int rc) {
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::cerr << "error: cannot write to standard output: " << std::strerror(errno) << "\n";
+    return rc == 0 ? 1 : rc;
+  }
+  return rc;
+}
+
 int closurelab_main(int argc, char** argv, const UserRegistration& register_user) {
   if (argc < 2) {
     usage(std::cerr);
@@ -302,19 +315,19 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
     Registry registry;
     register_builtin_strategies(registry);
     if (register_user) register_user(registry);
-    if (cmd == "list") return list_command(argc, argv, registry);
+    if (cmd == "list") return stdout_checked(list_command(argc, argv, registry));
     if (cmd == "run") return run_command(argc, argv, registry);
     if (cmd == "merge") return merge_command(argc, argv, registry);
     if (cmd == "deconvolve") return run_deconvolve_command(argc, argv, registry);
-    if (cmd == "store") return store_command(argc, argv);
+    if (cmd == "store") return stdout_checked(store_command(argc, argv));
     if (cmd == "export") return run_export_command(argc, argv);
     if (cmd == "--help" || cmd == "-h" || cmd == "help") {
       usage(std::cout);
-      return 0;
+      return stdout_checked(0);
     }
     if (cmd == "--version") {
       std::cout << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n";
-      return 0;
+      return stdout_checked(0);
     }
     std::cerr << "error: unknown command '" << cmd << "'; known: list, run, merge, deconvolve, store, export, --help, "
                  "--version\n";

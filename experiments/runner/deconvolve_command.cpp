@@ -7,12 +7,17 @@
 // (bad input) or 1 (numerical failure).
 #include "experiments/runner/deconvolve_command.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
 #include "core/closure/deconvolver.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/metrics.hpp"
 #include "core/closure/forward_operator.hpp"
 #include "core/io/matrix_market.hpp"
 #include "core/base/registry.hpp"
@@ -124,11 +129,19 @@ int run_deconvolve_command(int argc, char** argv, const Registry& registry) {
     out["rhs"] = o.rhs;
     out["noise_level"] = o.noise_level;
     if (x_true.size() > 0) {
-      const double nt = x_true.norm();
-      out["relative_error"] = nt > 0 && r.x.allFinite() ? json((r.x - x_true).norm() / nt) : json(nullptr);
+      const double nt = robust_norm(x_true);  // without overflow: data of 1e200 have a finite relative error
+      out["relative_error"] = nt > 0 && r.x.allFinite() ? json(robust_norm(r.x - x_true) / nt) : json(nullptr);
     }
     if (!o.out.empty()) {
-      write_matrix_market(o.out, Eigen::MatrixXd(r.x));
+      try {
+        write_matrix_market(o.out, Eigen::MatrixXd(r.x));
+      } catch (const std::exception& e) {
+        // Nothing half-written is left behind as if it were the solution (a full disk leaves a 0-byte file).
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(o.out, ec)) std::filesystem::remove(o.out, ec);
+        std::cerr << "error: cannot write the solution to '" << o.out << "': " << e.what() << "\n";
+        return 1;
+      }
       out["solution_file"] = o.out;
     } else {
       std::vector<double> xs(r.x.data(), r.x.data() + r.x.size());
@@ -138,6 +151,11 @@ int run_deconvolve_command(int argc, char** argv, const Registry& registry) {
       out["x"] = r.x.allFinite() ? json(xs) : json(nullptr);
     }
     std::cout << out.dump(2) << "\n";
+    std::cout.flush();
+    if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      std::cerr << "error: cannot write the result to standard output: " << std::strerror(errno) << "\n";
+      return 1;
+    }
     if (r.status == DeconvolutionStatus::numerical_issue) {
       std::cerr << "error: numerical failure: " << r.stats.message << "\n";
       return 1;  // the result is printed, but it is not a solution

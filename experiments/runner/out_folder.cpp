@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -44,8 +45,22 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command_line, 
   fs::create_directories(fs::path(dir) / "cells", ec);
   if (ec) throw std::runtime_error("cannot create folder '" + (fs::path(dir) / "cells").string() + "': " + ec.message());
   const fs::path file = fs::path(dir) / lock_name;
-  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error("cannot create the lock file '" + file.string() + "': " + std::strerror(errno));
+  // Never through a link: a symbolic link planted at the lock's name would otherwise have its target truncated
+  // and overwritten with the holder's note (the store's locks and the table's rename behave the same way).
+  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+  if (fd_ < 0) {
+    const int err = errno;
+    if (err == ELOOP)
+      throw std::runtime_error("the lock file '" + file.string() +
+                               "' is a symbolic link; it is not followed (remove it, or use another --out)");
+    throw std::runtime_error("cannot create the lock file '" + file.string() + "': " + std::strerror(err));
+  }
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    fd_ = -1;
+    throw std::runtime_error("the lock file '" + file.string() + "' is not a regular file (remove it, or use another --out)");
+  }
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     char buf[1024] = {0};
     const ssize_t n = ::pread(fd_, buf, sizeof buf - 1, 0);

@@ -4,12 +4,14 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "core/base/errors.hpp"
+#include "core/base/run_progress.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/runner/cell_scheduler.hpp"
 #include "experiments/runner/out_folder.hpp"
@@ -22,16 +24,7 @@ namespace closurelab {
 
 namespace {
 
-std::string format_seconds(double s) {
-  char buf[32];
-  if (s < 90)
-    std::snprintf(buf, sizeof buf, "%.0f s", s);
-  else if (s < 5400)
-    std::snprintf(buf, sizeof buf, "%.1f min", s / 60);
-  else
-    std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
-  return buf;
-}
+std::string format_seconds(double s) { return format_duration(s); }  // core/base/run_progress.hpp
 
 // Rank 0's part of a run, from the folder check to the table; the other ranks are served (and finally released)
 // by schedule_cells. Every early return releases them with an empty schedule first.
@@ -121,6 +114,9 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
                      {"resolved", matrix->resolved[i]}});
   double computed_seconds = 0.0, first_seconds = 0.0;  // the first computed cell may carry shared work
   std::string write_error;
+  const auto run_start = std::chrono::steady_clock::now();
+  auto run_clock = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count(); };
+  PartialTableSchedule table_schedule;
   schedule_cells(
       tasks, jobs, threads_per_job, registry, provenance_here, group, [&](const CellTask& t, const json& row) {
         const std::size_t i = t.at("index").get<std::size_t>();
@@ -134,8 +130,13 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
           else
             computed_seconds += secs;
           ++finished;
-          if (!shard.active())
+          // The partial table, rewritten only as often as PartialTableSchedule allows (linear in the cells); the
+          // final table is written below.
+          if (!shard.active() && table_schedule.due(run_clock())) {
+            const double w0 = run_clock();
             write_table(table_file, make_table(spec, options.spec_file, finished_rows(), false), true);
+            table_schedule.written(w0, run_clock());
+          }
         } catch (const std::exception& e) {
           write_error = e.what();
           return false;

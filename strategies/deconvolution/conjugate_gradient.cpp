@@ -16,7 +16,7 @@ ScanPoint point(double k, const Eigen::VectorXd& x, double rnorm, long matvecs, 
   ScanPoint p;
   p.parameter = k;
   p.residual_norm = rnorm;
-  p.solution_norm = x.norm();
+  p.solution_norm = robust_norm(x);
   p.matvecs = matvecs;
   p.last = last;
   p.solution = [&x] { return x; };
@@ -105,14 +105,14 @@ class ConjugateGradient : public KrylovBase {
   void run(const Eigen::VectorXd& b, int count, double tolerance, const ScanVisitor& visit) const override {
     Eigen::VectorXd x = Eigen::VectorXd::Zero(op().cols());
     if (!refusal_.empty()) {
-      ScanPoint p = point(0, x, b.norm(), 0, true);
+      ScanPoint p = point(0, x, robust_norm(b), 0, true);
       p.issue = refusal_;
       visit(p);
       return;
     }
     Eigen::VectorXd r = b, p = r;
     double rs = r.squaredNorm();
-    const double stop = std::max(tolerance, 0.0) * b.norm();
+    const double stop = std::max(tolerance, 0.0) * robust_norm(b);
     const bool scanning = tolerance < 0.0;
     double min_rnorm = std::sqrt(rs);
     int since = 0;
@@ -163,13 +163,13 @@ class Cgls : public KrylovBase {
     Eigen::VectorXd p = s;
     double gamma = s.squaredNorm();
     const double gamma0 = gamma;
-    if (!visit(point(0, x, r.norm(), matvecs, count == 0 || gamma == 0.0))) return;
+    if (!visit(point(0, x, robust_norm(r), matvecs, count == 0 || gamma == 0.0))) return;
     if (count == 0 || gamma == 0.0) return;
     for (int k = 1; k <= count; ++k) {
       const Eigen::VectorXd q = op().apply(p);
       const double qq = q.squaredNorm();
       if (!(qq > 0.0) || !std::isfinite(qq)) {  // ||Ap||^2 under- or overflowed: stop with x so far, as an issue
-        ScanPoint pt = point(k - 1, x, r.norm(), matvecs, true);
+        ScanPoint pt = point(k - 1, x, robust_norm(r), matvecs, true);
         pt.issue = "cgls: ||A p||^2 = " + std::to_string(qq) + " at iteration " + std::to_string(k) +
                    " (under- or overflow; the operator or data are badly scaled)";
         visit(pt);
@@ -183,7 +183,7 @@ class Cgls : public KrylovBase {
       const double gamma_new = s.squaredNorm();
       // Stop when the normal-equation residual ‖Aᵀr‖ is negligible (the least-squares solution is reached).
       const bool last = k == count || gamma_new == 0.0 || std::sqrt(gamma_new) <= std::max(tolerance, 1e-15) * std::sqrt(gamma0);
-      if (!visit(point(k, x, r.norm(), matvecs, last)) || last) return;
+      if (!visit(point(k, x, robust_norm(r), matvecs, last)) || last) return;
       p = s + (gamma_new / gamma) * p;
       gamma = gamma_new;
     }

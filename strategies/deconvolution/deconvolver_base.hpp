@@ -1,14 +1,18 @@
 #pragma once
 // Shared plumbing of the built-in deconvolvers: the parameter rule, timing of setup and solve, input checks,
-// the scaling of badly scaled operators, and the final guard (an empty or non-finite x is never `converged`).
+// the scaling of badly scaled operators, and the final guards: an empty or non-finite x, or a nonzero x that fits
+// the data no better than x = 0 (‖b − A x‖ >= ‖b‖), is never `converged`.
 // A strategy implements its setup, its fixed-parameter solve and its scan.
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 
 #include "core/closure/deconvolver.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/metrics.hpp"
 #include "core/closure/forward_operator.hpp"
 #include "core/closure/parameter_choice.hpp"
 
@@ -72,6 +76,9 @@ class DeconvolverBase : public Deconvolver {
     } else if (!r.x.allFinite()) {
       r.status = DeconvolutionStatus::numerical_issue;
       r.stats.message = "non-finite entries in the solution" + (r.stats.message.empty() ? "" : "; " + r.stats.message);
+    } else if (r.status == DeconvolutionStatus::converged &&
+               !(rule_.rule == ParameterRule::discrepancy && r.stats.residual_norm <= rule_.safety * noise_level)) {
+      no_better_than_zero(r, b);  // (data that are all noise meet the discrepancy principle near x = 0: kept)
     }
     return r;
   }
@@ -86,7 +93,8 @@ class DeconvolverBase : public Deconvolver {
       q.parameter = unscale_parameter(p.parameter);
       q.residual_norm = std::ldexp(p.residual_norm, m);
       q.solution_norm = std::ldexp(p.solution_norm, xs);
-      if (p.gcv >= 0) q.gcv = std::ldexp(p.gcv, 2 * m);
+      // q.gcv stays in the scaled problem's units: a factor 2^(2m) common to the whole scan, which leaves its
+      // minimizer as it is, and which would overflow for data of 1e200 (the rule then found no finite GCV value).
       q.solution = [&p, xs] { return times_power_of_two(p.solution(), xs); };
       return visit(q);
     });
@@ -105,15 +113,33 @@ class DeconvolverBase : public Deconvolver {
   int scale_exponent() const { return scale_exponent_; }
   virtual double unscale_parameter(double p) const { return p; }
   const RuleConfig& rule() const { return rule_; }
+  // Why a solution may fit no better than x = 0 with this method (appended to that message).
+  virtual std::string no_fit_hint() const { return ""; }
   // Fills the norms of a fixed-parameter result from its x (one more product with A).
   void finish_fixed(DeconvolutionResult& r, const Eigen::VectorXd& b, double parameter) const {
-    r.stats.residual_norm = (b - a_->apply(r.x)).norm();
-    r.stats.solution_norm = r.x.norm();
+    r.stats.residual_norm = robust_norm(b - a_->apply(r.x));
+    r.stats.solution_norm = robust_norm(r.x);
     r.stats.chosen_parameter = parameter;
     r.cost.matvecs += 1;
   }
 
  private:
+  // A nonzero x whose residual is not below ‖b‖ (to sqrt(eps), relative) fits the data no better than the trivial
+  // answer x = 0 and is larger: not a regularized solution (e.g. the Landweber series on a zero eigenvalue grows
+  // x linearly while the residual stays at ‖b‖; a truncation above the numerical rank divides by rounding noise).
+  void no_better_than_zero(DeconvolutionResult& r, const Eigen::VectorXd& b) const {
+    const double bn = robust_norm(b), res = r.stats.residual_norm;
+    if (!(bn > 0) || !std::isfinite(res) || r.x.isZero(0)) return;
+    const double tol = std::sqrt(std::numeric_limits<double>::epsilon());
+    if (!(res >= (1.0 - tol) * bn)) return;
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "residual ||b - A x|| = %.6g is not below ||b|| = %.6g (x = 0) while ||x|| = %.6g",
+                  res, bn, r.stats.solution_norm);
+    r.status = DeconvolutionStatus::numerical_issue;
+    const std::string hint = no_fit_hint();
+    r.stats.message = name_ + ": the solution fits the data no better than x = 0 (" + buf + ")" +
+                      (hint.empty() ? "" : ": " + hint) + (r.stats.message.empty() ? "" : "; " + r.stats.message);
+  }
   void require_setup() const {
     if (!a_) throw ConfigError("", name_ + ": solve() called before setup(A)");
   }
@@ -172,6 +198,7 @@ class DeconvolverBase : public Deconvolver {
     s.data_mesh = a.data_mesh;
     s.solution_mesh = a.solution_mesh;
     s.dimension = a.dimension;
+    s.link_weights = a.link_weights;  // the prior of first_difference_zero_ends (scale-free: relative weights)
     return s;
   }
   // A fixed-parameter result of op() x' = 2^-m b back to A x = b: x = 2^(m-k) x', residual 2^m.

@@ -22,6 +22,10 @@ class LandweberSeries : public DeconvolverBase {
 
  protected:
   bool scale_invariant() const override { return false; }  // the series (4.3) is for A ~ I, used as given
+  std::string no_fit_hint() const override {
+    return "the series (4.3) needs A's spectrum in (0, 2); a zero eigenvalue (or one at 2) leaves that part of the "
+           "residual unchanged and adds it to x once per order (linear growth)";
+  }
   void do_setup(const ForwardOperator& a) override {
     if (!a.is_square())
       throw ConfigError("", "landweber (the series (4.3)/(4.9)) needs a square operator (coarse_coarse or fine_fine); "
@@ -40,7 +44,7 @@ class LandweberSeries : public DeconvolverBase {
       }
       r.x = std::move(x);
       r.stats.residual_norm = std::numeric_limits<double>::quiet_NaN();
-      r.stats.solution_norm = r.x.norm();
+      r.stats.solution_norm = robust_norm(r.x);
       r.stats.chosen_parameter = order_;
       r.stats.iterations = order_;
       r.cost.matvecs = order_;
@@ -63,14 +67,14 @@ class LandweberSeries : public DeconvolverBase {
  private:
   void do_scan_to(const Eigen::VectorXd& b, int max_order, const ScanVisitor& visit) const {
     Eigen::VectorXd x = b, u = b;
-    double previous = b.norm();
-    const double floor = 1e-13 * b.norm();
+    double previous = robust_norm(b);
+    const double floor = 1e-13 * robust_norm(b);
     for (int n = 0; n <= max_order; ++n) {
       Eigen::VectorXd r = u - op().apply(u);  // u_{n+1} = (I − A) u_n = b − A x_n
       ScanPoint p;
       p.parameter = n;
-      p.residual_norm = r.norm();
-      p.solution_norm = x.norm();
+      p.residual_norm = robust_norm(r);
+      p.solution_norm = robust_norm(x);
       p.matvecs = n + 1;
       p.last = n == max_order;
       if (!(p.residual_norm <= (1.0 + growth_tolerance) * previous + floor)) {  // growth beyond rounding

@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 #include <Eigen/SparseLU>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <unsupported/Eigen/KroneckerProduct>
 
@@ -22,6 +23,17 @@ namespace closurelab {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
+
+// CHOLMOD's factorization with its reciprocal condition estimate (min/max of diag(L), squared for LL'):
+// CHOLMOD only fails on a non-positive pivot, so a matrix that is singular to working precision (A'A + 1e-300 I
+// for a 12x12 Hilbert A) factorizes "successfully" into garbage; the estimate says so.
+class Cholmod : public Eigen::CholmodDecomposition<SpMat> {
+ public:
+  double rcond() { return m_cholmodFactor ? cholmod_rcond(m_cholmodFactor, &cholmod()) : 0.0; }
+};
+
+// A factorization whose reciprocal condition number is below the unit roundoff solves with no correct digit.
+constexpr double singular_rcond = std::numeric_limits<double>::epsilon();
 
 class Tikhonov : public DeconvolverBase {
  public:
@@ -68,7 +80,7 @@ class Tikhonov : public DeconvolverBase {
       const SpMat as = a.to_sparse();
       g_sparse_ = paper_ ? as : SpMat(as.transpose() * as);
       if (!paper_ || symmetric_) {
-        cholmod_ = std::make_unique<Eigen::CholmodDecomposition<SpMat>>();
+        cholmod_ = std::make_unique<Cholmod>();
         cholmod_->analyzePattern(SpMat(g_sparse_ + c_));
       }
     }
@@ -83,7 +95,7 @@ class Tikhonov : public DeconvolverBase {
       r.x = spectral_solution(beta, alpha, issue);
       r.cost.matvecs = 2;
     } else {
-      r.x = factored_solution(b, alpha, issue);
+      r.x = factored_solution(b, alpha, issue, true);
       r.cost.matvecs = paper_ ? 0 : 1;
     }
     // An alpha that dwarfs ||A||^2 (||A|| in the paper form) gives x ~ A'b/alpha ~ 0 and leaves the residual at
@@ -144,8 +156,8 @@ class Tikhonov : public DeconvolverBase {
       } else {
         x = factored_solution(b, alpha, p.issue);
         matvecs += (paper_ ? 0 : 1) + 1;
-        p.residual_norm = (b - op().apply(x)).norm();
-        p.solution_norm = x.norm();
+        p.residual_norm = robust_norm(b - op().apply(x));
+        p.solution_norm = robust_norm(x);
         p.matvecs = matvecs;
         p.solution = [&x] { return x; };
       }
@@ -175,10 +187,18 @@ class Tikhonov : public DeconvolverBase {
     for (Eigen::Index i = 0; i < beta.size(); ++i) c(i) = filter(basis_.sigma()(i), alpha) * beta(i);
     return basis_.synthesize(c);
   }
-  Eigen::VectorXd factored_solution(const Eigen::VectorXd& b, double alpha, std::string& issue) const {
+  // `check_conditioning` (the fixed-parameter solve): a Cholesky factor whose reciprocal condition estimate is
+  // below the unit roundoff is reported as not positive definite to working precision (the scan's smallest
+  // alphas are bounded by alpha_min and keep their behaviour).
+  Eigen::VectorXd factored_solution(const Eigen::VectorXd& b, double alpha, std::string& issue,
+                                    bool check_conditioning = false) const {
     const Eigen::VectorXd rhs = paper_ ? b : op().apply_transpose(b);
     const std::string not_pd = "tikhonov: the matrix " + std::string(paper_ ? "A + alpha C" : "A'A + alpha C") +
-                               " is not positive definite at alpha = " + std::to_string(alpha);
+                               " is not positive definite at alpha = " + fmt(alpha);
+    auto singular = [&](double rc, const char* how) {
+      issue = not_pd + " to working precision: reciprocal condition estimate " + fmt(rc) + " (" + how +
+              ") is below the unit roundoff; increase alpha" + (paper_ ? "" : " (the normal equations square the condition number)");
+    };
     if (backend_ == Backend::dense) {
       const Eigen::MatrixXd k = g_dense_ + alpha * c_dense_;
       if (paper_ && !symmetric_) return k.partialPivLu().solve(rhs);
@@ -186,6 +206,10 @@ class Tikhonov : public DeconvolverBase {
       if (llt.info() != Eigen::Success) {
         issue = not_pd;
         return Eigen::VectorXd::Zero(op().cols());
+      }
+      if (check_conditioning) {
+        const double rc = llt.rcond();
+        if (!(rc >= singular_rcond)) singular(rc, "Eigen LLT");
       }
       return llt.solve(rhs);
     }
@@ -203,6 +227,10 @@ class Tikhonov : public DeconvolverBase {
       issue = not_pd + " (CHOLMOD)";
       return Eigen::VectorXd::Zero(op().cols());
     }
+    if (check_conditioning) {
+      const double rc = cholmod_->rcond();
+      if (!(rc >= singular_rcond)) singular(rc, "CHOLMOD, (min/max diag L)^2");
+    }
     return cholmod_->solve(rhs);
   }
 
@@ -217,7 +245,7 @@ class Tikhonov : public DeconvolverBase {
   SpectralBasis basis_;
   SpMat c_, g_sparse_;
   Eigen::MatrixXd g_dense_, c_dense_;
-  std::unique_ptr<Eigen::CholmodDecomposition<SpMat>> cholmod_;  // factorize() mutates; see note in solve
+  std::unique_ptr<Cholmod> cholmod_;  // factorize() mutates; see note in solve
 };
 
 }  // namespace

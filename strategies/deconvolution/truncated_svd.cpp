@@ -39,6 +39,16 @@ class TruncatedSvd : public DeconvolverBase {
     r.x = basis_.synthesize(filtered(beta, k));
     r.cost.matvecs = 2;
     finish_fixed(r, b, k);
+    // Singular values at or below the rank tolerance max(m, n) ε σ_1 are rounding noise: dividing by them
+    // amplifies the data's rounding by ~1/ε (a rank-3 5x5 matrix with k = 5 gave ||x|| = 5e15).
+    if (k > basis_.numerical_rank()) {
+      r.status = DeconvolutionStatus::numerical_issue;
+      r.stats.message = "tsvd: " + std::string(by_index_ ? "k = " : "the threshold keeps k = ") + std::to_string(k) +
+                        " singular values, above the numerical rank " + std::to_string(basis_.numerical_rank()) +
+                        " (singular values <= max(m, n) eps sigma_1 are rounding noise); use k <= " +
+                        std::to_string(basis_.numerical_rank()) + (by_index_ ? "" : " (a larger threshold)") +
+                        " or a rule";
+    }
     return r;
   }
 

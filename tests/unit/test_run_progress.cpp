@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/base/run_progress.hpp"
 
@@ -35,4 +36,20 @@ TEST(RunProgress, SteadyStateIsCappedByMaxTime) {
   const ProgressEstimate e = p.update(0.5, 0.099, 5.0);  // barely decaying: the max-time limit comes first
   EXPECT_DOUBLE_EQ(e.seconds_left, 5.0);
   EXPECT_DOUBLE_EQ(e.fraction, 0.5);
+}
+
+// Issue 25 (smaller): an extreme legal parameter printed an 80-digit number of seconds left; durations are now
+// in readable units.
+TEST(RunProgress, DurationsAreInReadableUnits) {
+  using closurelab::format_duration;
+  EXPECT_EQ(format_duration(30), "30 s");
+  EXPECT_EQ(format_duration(600), "10.0 min");
+  EXPECT_EQ(format_duration(7200), "2.0 h");
+  EXPECT_EQ(format_duration(5 * 86400), "5.0 days");
+  EXPECT_EQ(format_duration(1e80), "3.17e+72 years");
+  EXPECT_EQ(format_duration(std::numeric_limits<double>::infinity()), "an unknown time");
+  closurelab::ProgressEstimate e;
+  e.fraction = 0.01;
+  e.seconds_left = 1e80;
+  EXPECT_EQ(closurelab::RunProgress::describe(e), "1 % done, about 3.17e+72 years left");
 }

@@ -1,0 +1,15 @@
+#pragma once
+// Backward Euler (MesoSolverOptions::time_integration) probes the rate's Jacobian once, which is right only for a
+// closure linear in v̄. Checked when a spec is validated, before anything runs (defined with the solver's schema,
+// meso_solver_schema.cpp).
+#include <string>
+
+#include "core/base/params.hpp"
+
+namespace closurelab {
+
+// With time_integration backward_euler in the resolved solver section, a resolved deconvolver with a parameter
+// rule, or cg/cgls, is a ConfigError at `path`/solver/time_integration naming the deconvolver.
+void check_implicit_closure(const json& resolved_solver, const json& resolved_deconvolver, const std::string& path);
+
+}  // namespace closurelab

@@ -29,11 +29,12 @@ ParamSchema cylinder_lattice_schema() {
   ParamSchema schema{
       integer_param("n", 48, "particles per side of the cell (epsilon' = L / n)", 8, 4096),
       number_param("l", 1.0, "cell side L", 0.0, {}, true),
-      number_param("radius_over_length", 0.2, "cylinder radius a / L (solid fraction c = pi a^2 / L^2); a < L/2",
-                   0.0, {}, true),
+      number_param("radius_over_length", 0.2, "cylinder radius a / L (solid fraction c = pi a^2 / L^2); a < L/2", 0.0,
+                   {}, true),
       number_param("rho", 1.0, "fluid density", 0.0, {}, true),
       number_param("mu", 1.0, "dynamic viscosity", 0.0, {}, true),
-      number_param("g", 0.01, "body force per unit mass along x, on the fluid only (Re = a <u> / nu ~ 1e-4 at 0.01)", 0.0, {}, true),
+      number_param("g", 0.01, "body force per unit mass along x, on the fluid only (Re = a <u> / nu ~ 1e-4 at 0.01)",
+                   0.0, {}, true),
       number_param("eta_over_l", 1.0 / 16.0, "averaging scale eta'/L", 0.0, 0.5, true),
       number_param("background_pressure_factor", 0.002,
                    "background pressure / (rho c^2); small: its lattice error grows k without bound at 1.0", 0.0, 10.0),
@@ -55,8 +56,8 @@ std::unique_ptr<Scene> make_cylinder_lattice(const json& p) {
   check_particle_memory(n, n, "/n");
   const double l = p.at("l").get<double>(), a_over_l = p.at("radius_over_length").get<double>();
   if (a_over_l >= 0.5)
-    throw ConfigError("/radius_over_length", "the cylinder does not fit the cell: need a < L/2 (got a/L = " +
-                                                 std::to_string(a_over_l) + ")");
+    throw ConfigError("/radius_over_length",
+                      "the cylinder does not fit the cell: need a < L/2 (got a/L = " + std::to_string(a_over_l) + ")");
   const double a = a_over_l * l;
   s->nx = s->ny = n;
   s->dx = l / n;

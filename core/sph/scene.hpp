@@ -107,9 +107,9 @@ struct Scene {
   // the Darcy permeability k = μ ⟨u_x⟩ / (ρ g), ⟨u_x⟩ the x-velocity averaged over the whole periodic cell (the
   // solid counting zero) and g the body force per unit mass on the fluid; the scene states its reference value.
   struct Permeability {
-    double reference = 0.0;       // k (length²)
-    double body_force = 0.0;      // g along x, per unit mass, on the fluid particles only
-    double solid_fraction = 0.0;  // c, the solid's share of the cell's area
+    double reference = 0.0;        // k (length²)
+    double body_force = 0.0;       // g along x, per unit mass, on the fluid particles only
+    double solid_fraction = 0.0;   // c, the solid's share of the cell's area
     std::string reference_source;  // how the reference was computed
     // The solid's size (the cylinder radius) and, for a measured k, the size whose reference permeability is k:
     // how far the discrete solid's effective surface lies from the nominal one (empty: not offered).
@@ -134,7 +134,8 @@ struct Scene {
   // plus the list skin): per-unit-length quantities (averages with periodic images, pair sums per column) are
   // the same on it; otherwise the scene itself.
   Scene narrowest_strip() const;
-  // Lattice particles: (i + 1/2) dx, (j + 1/2) dx; walls and solids (is_solid) held fixed; mass so that the SPH density is rho0.
+  // Lattice particles: (i + 1/2) dx, (j + 1/2) dx; walls and solids (is_solid) held fixed; mass so that the SPH density
+  // is rho0.
   ParticleSystem make_particles() const;
   double particle_mass() const;
   double max_viscosity() const;

@@ -79,13 +79,12 @@ json run_permeability_validation(const Scene& scene, SphRunOptions opt) {
                             {"reference_over_l2", perm.reference / (scene.box.lx * scene.box.ly)}};
   if (perm.solid_size_for) {
     const double eff = perm.solid_size_for(k);
-    errors["effective_solid_size"] = {{"size", eff},
-                                      {"nominal", perm.solid_size},
-                                      {"shift_in_spacings", (perm.solid_size - eff) / scene.dx}};
+    errors["effective_solid_size"] = {
+        {"size", eff}, {"nominal", perm.solid_size}, {"shift_in_spacings", (perm.solid_size - eff) / scene.dx}};
   }
   // The k history: one value every steady_window steps (steps = index * window, t ~ steps * dt).
-  errors["permeability_history"] = {{"window_steps", opt.steady_window}, {"window_time", opt.steady_window * sph.dt},
-                                    {"k", history}};
+  errors["permeability_history"] = {
+      {"window_steps", opt.steady_window}, {"window_time", opt.steady_window * sph.dt}, {"k", history}};
   double vmax = 0.0, vy_abs = 0.0;
   for (std::size_t a = 0; a < ps.size(); ++a) {
     if (ps.fixed[a]) continue;

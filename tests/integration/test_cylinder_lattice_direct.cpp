@@ -34,19 +34,22 @@ json run_lattice(double a) {
       json{{"name", "cylinder-lattice"}, {"n", 48}, {"radius_over_length", a}}, "/scene");
   SphRunOptions opt;
   opt.steady_tolerance = 1e-4;  // as experiments/cylinders/direct.json: the drift after the plateau is ~1e-4 per window
-  opt.steady_window = 150;  // 1/60 model time at n = 48 (dt = 0.25 eps'^2 rho / mu)
+  opt.steady_window = 150;      // 1/60 model time at n = 48 (dt = 0.25 eps'^2 rho / mu)
   opt.max_time = 1.0;
   const json row = run_permeability_validation(*scene, opt);
   std::cout << "a/L = " << a << ": " << row.at("errors").at("permeability").dump() << ", shift "
-            << row.at("errors").at("effective_solid_size").at("shift_in_spacings") << " spacings, t = "
-            << row.at("direct_sph").at("time") << "\n";
+            << row.at("errors").at("effective_solid_size").at("shift_in_spacings")
+            << " spacings, t = " << row.at("direct_sph").at("time") << "\n";
   return row;
 }
 
-void expect_study_band(const json& row) {
+// k against the reference: the study's n = 48 value (+8.66 % at a = 0.2 L, +14.68 % at 0.3 L) within 3 points,
+// i.e. about an eighth of a spacing of effective radius, and ten times both the spread from where the run stops
+// (the drift after the plateau, ~0.3 %) and the change from background pressure 0.02 to 0.05 rho c^2 (0.35 %).
+void expect_study_band(const json& row, double study_relative_difference) {
   EXPECT_EQ(row.at("status"), "ok") << row.dump();
   const json& e = row.at("errors");
-  EXPECT_GT(e.at("permeability").at("relative_difference").get<double>(), 0.0);  // the offset makes k high
+  EXPECT_NEAR(e.at("permeability").at("relative_difference").get<double>(), study_relative_difference, 0.03);
   const double shift = e.at("effective_solid_size").at("shift_in_spacings").get<double>();
   EXPECT_GE(shift, 0.25);
   EXPECT_LE(shift, 0.6);
@@ -58,6 +61,10 @@ void expect_study_band(const json& row) {
 
 }  // namespace
 
-TEST(CylinderLatticeDirectSph, PermeabilityAtCoarseResolutionSmallRadius) { expect_study_band(run_lattice(0.2)); }
+TEST(CylinderLatticeDirectSph, PermeabilityAtCoarseResolutionSmallRadius) {
+  expect_study_band(run_lattice(0.2), 0.0866);
+}
 
-TEST(CylinderLatticeDirectSph, PermeabilityAtCoarseResolutionLargeRadius) { expect_study_band(run_lattice(0.3)); }
+TEST(CylinderLatticeDirectSph, PermeabilityAtCoarseResolutionLargeRadius) {
+  expect_study_band(run_lattice(0.3), 0.1468);
+}

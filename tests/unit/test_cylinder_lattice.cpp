@@ -33,7 +33,7 @@ std::unique_ptr<Scene> lattice(json p) {
 TEST(SquareArrayStokes, ReproducesSanganiAcrivosTable) {
   const struct {
     double c, drag, tolerance;
-  } table[] = {{0.05, 15.56, 0.005 / 15.56}, {0.10, 24.83, 0.005 / 24.83}, {0.20, 51.53, 0.005 / 51.53},
+  } table[] = {{0.05, 15.56, 0.005 / 15.56}, {0.10, 24.83, 0.005 / 24.83},   {0.20, 51.53, 0.005 / 51.53},
                {0.30, 102.90, 2e-4},         {0.40, 217.89, 0.005 / 217.89}, {0.50, 532.55, 0.005 / 532.55}};
   for (const auto& row : table) {
     const SquareArrayStokesResult r = square_array_stokes(radius_for(row.c), 32);
@@ -103,7 +103,10 @@ TEST(CylinderLatticeScene, FrozenSitesInsideTheCylinderAndTheReference) {
 // Bad input names its JSON path: a cylinder that does not fit the cell (a >= L/2), a gap between cylinders that
 // holds fewer than two SPH supports, a cylinder thinner than one support.
 TEST(CylinderLatticeScene, BadInputNamesThePath) {
-  EXPECT_NE(config_error([] { lattice({{"radius_over_length", 0.5}}); }).find("/radius_over_length"), std::string::npos);
+  EXPECT_NE(config_error([] {
+              lattice({{"radius_over_length", 0.5}});
+            }).find("/radius_over_length"),
+            std::string::npos);
   EXPECT_NE(config_error([] { lattice({{"radius_over_length", 0.7}}); }).find("does not fit"), std::string::npos);
   const std::string gap = config_error([] { lattice({{"n", 48}, {"radius_over_length", 0.45}}); });
   EXPECT_NE(gap.find("/n"), std::string::npos) << gap;

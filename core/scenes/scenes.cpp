@@ -3,6 +3,7 @@
 
 #include "core/scenes/analytic.hpp"
 #include "core/scenes/cellular_scene.hpp"
+#include "core/scenes/cylinder_lattice_scene.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/memory_limit.hpp"
 #include "core/scenes/layered_scene.hpp"
@@ -18,7 +19,10 @@ ParticleSystem Scene::make_particles() const {
   for (int j = 0; j < ny; ++j) {
     const double y = (j + 0.5) * dx;
     const int ph = phase(y);
-    for (int i = 0; i < nx; ++i) ps.add((i + 0.5) * dx, y, m, ph, is_wall(y));
+    for (int i = 0; i < nx; ++i) {
+      const double x = (i + 0.5) * dx;
+      ps.add(x, y, m, ph, is_solid(x, y));
+    }
   }
   if (initial_velocity)
     for (std::size_t a = 0; a < ps.size(); ++a) {
@@ -183,6 +187,7 @@ void finish_sound_speed(Scene& s) {
 void register_scenes(Registry& r) {
   register_layered_scene(r);
   register_cellular_scene(r);
+  register_cylinder_lattice_scene(r);
   r.scenes.add({"poiseuille-uniform", "Poiseuille flow between walls at 3 eta' and L_y - 3 eta', uniform force (par. 5)",
                 channel_schema()},
                [](const json& p) {

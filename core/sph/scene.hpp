@@ -39,6 +39,12 @@ struct Scene {
   double eta = 0.0;  // η', the averaging scale; walls are 3η' thick (5.3)
   bool has_walls = false;
   double wall_lo = 0.0, wall_hi = 0.0;  // l1, l2 of (5.15)
+  // Solids besides the walls in y (a boundary component given by position, e.g. the cylinders of a porous
+  // medium): the lattice particles where solid_at(x, y) holds are held fixed at zero velocity (5.3) like wall
+  // particles. Empty: none. The ghost-velocity wall model measures distances to the walls in y only, so scenes
+  // with solid_at use zero-velocity solids.
+  std::function<bool(double x, double y)> solid_at;
+  // The wall model applies to the walls in y (has_walls) only.
   WallModel wall_model = WallModel::zero_velocity;
   double ghost_beta_max = 0.0;
 
@@ -97,8 +103,26 @@ struct Scene {
     }
   };
   std::optional<CellularMode> cellular_mode;
+  // Flow through a porous medium (cylinder-lattice; core/scenes/cylinder_lattice_scene.hpp): the number wanted is
+  // the Darcy permeability k = μ ⟨u_x⟩ / (ρ g), ⟨u_x⟩ the x-velocity averaged over the whole periodic cell (the
+  // solid counting zero) and g the body force per unit mass on the fluid; the scene states its reference value.
+  struct Permeability {
+    double reference = 0.0;        // k (length²)
+    double body_force = 0.0;       // g along x, per unit mass, on the fluid particles only
+    double solid_fraction = 0.0;   // c, the solid's share of the cell's area
+    std::string reference_source;  // how the reference was computed
+    // The solid's size (the cylinder radius) and, for a measured k, the size whose reference permeability is k:
+    // how far the discrete solid's effective surface lies from the nominal one (empty: not offered).
+    double solid_size = 0.0;
+    std::function<double(double k)> solid_size_for;
+    // ρ g k / μ: the superficial velocity ⟨u_x⟩ the reference predicts.
+    double superficial_velocity(double rho, double mu) const { return rho * body_force * reference / mu; }
+  };
+  std::optional<Permeability> permeability;
 
   bool is_wall(double y) const { return has_walls && (y < wall_lo || y > wall_hi); }
+  // A lattice particle at (x, y) is held fixed: inside a wall in y or a solid of solid_at.
+  bool is_solid(double x, double y) const { return is_wall(y) || (solid_at && solid_at(x, y)); }
   // The regions of the error tables (one definition): fluid, strictly between the wall surfaces (a node on a
   // wall surface carries the imposed v̄ = 0 of (5.6)); interior, at least 3η' from both wall surfaces; the wall
   // band, fluid and not interior. Without walls every point is fluid and interior. A point within 1e-12 L_y of
@@ -110,7 +134,8 @@ struct Scene {
   // plus the list skin): per-unit-length quantities (averages with periodic images, pair sums per column) are
   // the same on it; otherwise the scene itself.
   Scene narrowest_strip() const;
-  // Lattice particles: (i + 1/2) dx, (j + 1/2) dx; walls held fixed; mass so that the SPH density is rho0.
+  // Lattice particles: (i + 1/2) dx, (j + 1/2) dx; walls and solids (is_solid) held fixed; mass so that the SPH density
+  // is rho0.
   ParticleSystem make_particles() const;
   double particle_mass() const;
   double max_viscosity() const;

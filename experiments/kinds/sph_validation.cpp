@@ -4,7 +4,8 @@
 // into a wall) separately, the effective wall position, the convective stress (App. B), and the cost.
 // Scenes with phase interfaces (layered-two-phase, §7) add errors near/away from the interfaces and the
 // final interface check (particles outside their phase region, row displacements, densities). Cellular
-// scenes (not x-invariant) are compared in 2D instead (experiments/kinds/cellular_validation.cpp).
+// scenes (not x-invariant) are compared in 2D instead (experiments/kinds/cellular_validation.cpp), porous-medium
+// scenes by their permeability (experiments/kinds/permeability_validation.cpp).
 #include "experiments/kinds/sph_validation.hpp"
 
 #include <Eigen/Dense>
@@ -21,6 +22,7 @@
 #include "experiments/runner/cell_config.hpp"
 #include "experiments/kinds/cellular_validation.hpp"
 #include "experiments/kinds/direct_reference.hpp"
+#include "experiments/kinds/permeability_validation.hpp"
 #include "experiments/runner/provenance.hpp"
 
 namespace closurelab {
@@ -136,8 +138,8 @@ class SphValidation : public ExperimentKind {
     check_keys(cell, path, {"scene", "kernel", "solver", "averaging"});
     json out;
     auto scene = build_scene(cell, path, reg, &out["scene"]);
-    if (!scene->analytic_vx && !scene->cellular_mode)
-      throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
+    if (!scene->analytic_vx && !scene->cellular_mode && !scene->permeability)
+      throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution or reference");
     build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["solver"] = resolve_section(cell, "solver", sph_solver_schema(), path);
     check_time_loop(out["solver"], path + "/solver");
@@ -150,6 +152,11 @@ class SphValidation : public ExperimentKind {
     const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
     const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
     const double spacing = cfg.at("averaging").at("mesh_spacing_over_eta").get<double>() * scene->eta;
+    if (scene->permeability) {  // porous media: the permeability against the scene's reference
+      SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
+      opt.progress = progress;
+      return run_permeability_validation(*scene, opt);
+    }
     if (scene->cellular_mode) {
       SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
       opt.progress = progress;

@@ -8,7 +8,7 @@ set(CLOSURELAB_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/closurelab)
 
 foreach(_dir core strategies experiments/kinds experiments/runner experiments/testproblems)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${_dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${_dir}
-          FILES_MATCHING PATTERN "*.hpp")
+          FILES_MATCHING PATTERN "*.hpp" PATTERN "hdf5_handle.hpp" EXCLUDE)  # includes <hdf5.h>: private
 endforeach()
 install(TARGETS closurelab_core closurelab_strategies closurelab_runner EXPORT closurelab_targets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/base/errors.hpp"
+#include "core/io/hdf5_handle.hpp"
 #include "core/base/memory_limit.hpp"
 
 namespace closurelab {
@@ -22,24 +23,7 @@ std::mutex& hdf5_mutex() {
   return m;
 }
 
-// An HDF5 identifier closed by its own close function when it goes out of scope.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, -1)), close_(o.close_) {}
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  Handle& operator=(Handle&&) = delete;
-  ~Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  hid_t get() const { return id_; }
-  bool ok() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
+using Handle = detail::Hdf5Handle;
 
 void silence_hdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }  // errors become exceptions here
 

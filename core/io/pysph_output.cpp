@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/base/errors.hpp"
+#include "core/io/hdf5_handle.hpp"
 
 namespace closurelab {
 
@@ -22,21 +23,7 @@ std::mutex& pysph_hdf5_mutex() {
   return m;
 }
 
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  hid_t get() const { return id_; }
-  bool ok() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
+using Handle = detail::Hdf5Handle;
 
 bool has_link(hid_t loc, const char* name) { return H5Lexists(loc, name, H5P_DEFAULT) > 0; }
 

@@ -1,6 +1,7 @@
 #include "core/sph/neighbour_search.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace closurelab {
@@ -78,6 +79,52 @@ GroupedPairList group_by_first_particle(PairList list, std::size_t n_particles, 
   if (!g.row_i.empty()) g.block_row.push_back(static_cast<std::uint32_t>(g.row_i.size()));
   g.longest_block = std::max<std::size_t>(g.longest_block, np - block_start);
   return g;
+}
+
+std::vector<std::uint8_t> fixed_within_reach_of_moving(const ParticleSystem& ps, const PeriodicBox& box, double reach) {
+  const std::size_t n = ps.size();
+  std::vector<std::uint8_t> near(n, 0);
+  if (n == 0) return near;
+  struct Axis {
+    double origin = 0.0, size = 1.0;
+    int cells = 1;
+    bool periodic = false;
+    int cell(double v) const { return std::clamp(static_cast<int>(std::floor((v - origin) / size)), 0, cells - 1); }
+  };
+  const auto make_axis = [reach](const std::vector<double>& v, double length, bool periodic) {
+    Axis ax;
+    ax.periodic = periodic;
+    double lo = 0.0, hi = length;
+    if (!periodic) lo = *std::min_element(v.begin(), v.end()), hi = *std::max_element(v.begin(), v.end());
+    ax.origin = lo;
+    ax.cells = std::max(1, static_cast<int>(std::floor((hi - lo) / reach)));
+    ax.size = hi > lo ? (hi - lo) / ax.cells : reach;
+    return ax;
+  };
+  const Axis gx = make_axis(ps.x, box.lx, box.periodic_x), gy = make_axis(ps.y, box.ly, box.periodic_y);
+  std::vector<std::vector<std::int32_t>> cell(static_cast<std::size_t>(gx.cells) * gy.cells);
+  for (std::size_t a = 0; a < n; ++a)
+    if (!ps.fixed[a]) cell[static_cast<std::size_t>(gy.cell(ps.y[a])) * gx.cells + gx.cell(ps.x[a])].push_back(a);
+  const double reach2 = reach * reach;
+  for (std::size_t a = 0; a < n; ++a) {
+    if (!ps.fixed[a]) continue;
+    const int cx = gx.cell(ps.x[a]), cy = gy.cell(ps.y[a]);
+    for (int oy = -1; oy <= 1 && !near[a]; ++oy)
+      for (int ox = -1; ox <= 1 && !near[a]; ++ox) {
+        int ix = cx + ox, iy = cy + oy;
+        if (gx.periodic) ix = (ix + gx.cells) % gx.cells;
+        if (gy.periodic) iy = (iy + gy.cells) % gy.cells;
+        if (ix < 0 || ix >= gx.cells || iy < 0 || iy >= gy.cells) continue;
+        for (const std::int32_t b : cell[static_cast<std::size_t>(iy) * gx.cells + ix]) {
+          const double dx = box.wrap_dx(ps.x[a] - ps.x[b]), dy = box.wrap_dy(ps.y[a] - ps.y[b]);
+          if (dx * dx + dy * dy <= reach2) {
+            near[a] = 1;
+            break;
+          }
+        }
+      }
+  }
+  return near;
 }
 
 }  // namespace closurelab

@@ -19,6 +19,13 @@ template <class Keep>
 PairList find_pairs(const ParticleSystem& ps, const std::vector<std::int32_t>& subset, const PeriodicBox& box,
                     double radius, Keep keep);
 
+// Which fixed particles lie within `reach` (minimum image) of some moving particle (1) or not (0), indexed like
+// `ps` (moving particles 0): the moving ones binned in cells at least `reach` wide, each fixed particle looking
+// into its own cell and the eight around it. Unlike find_pairs it accepts fewer than three cells along a periodic
+// axis (some cell is then seen twice, which a yes/no answer does not mind): the narrowest channel strip holds
+// only two cells of the engine's reach (support + skin + one spacing).
+std::vector<std::uint8_t> fixed_within_reach_of_moving(const ParticleSystem& ps, const PeriodicBox& box, double reach);
+
 // A pair list grouped by its first particle: pairs (i, j), i < j, in rows of one i (j ascending), the rows cut
 // into blocks of about `block_pairs` pairs (the unit of the SPH engine's pair passes and of their threads).
 struct GroupedPairList {

@@ -13,59 +13,6 @@
 
 namespace closurelab {
 
-namespace {
-
-// Which fixed particles lie within `reach` (minimum image) of some moving particle: the moving ones binned in
-// cells at least `reach` wide, each fixed particle looking into its own cell and the eight around it (with
-// fewer than three cells along a periodic axis some cell is seen twice, which a yes/no answer does not mind).
-std::vector<std::uint8_t> fixed_near_moving(const ParticleSystem& ps, const PeriodicBox& box, double reach) {
-  const std::size_t n = ps.size();
-  std::vector<std::uint8_t> near(n, 0);
-  if (n == 0) return near;
-  struct Axis {
-    double origin = 0.0, size = 1.0;
-    int cells = 1;
-    bool periodic = false;
-    int cell(double v) const { return std::clamp(static_cast<int>(std::floor((v - origin) / size)), 0, cells - 1); }
-  };
-  const auto make_axis = [reach](const std::vector<double>& v, double length, bool periodic) {
-    Axis ax;
-    ax.periodic = periodic;
-    double lo = 0.0, hi = length;
-    if (!periodic) lo = *std::min_element(v.begin(), v.end()), hi = *std::max_element(v.begin(), v.end());
-    ax.origin = lo;
-    ax.cells = std::max(1, static_cast<int>(std::floor((hi - lo) / reach)));
-    ax.size = hi > lo ? (hi - lo) / ax.cells : reach;
-    return ax;
-  };
-  const Axis gx = make_axis(ps.x, box.lx, box.periodic_x), gy = make_axis(ps.y, box.ly, box.periodic_y);
-  std::vector<std::vector<std::int32_t>> cell(static_cast<std::size_t>(gx.cells) * gy.cells);
-  for (std::size_t a = 0; a < n; ++a)
-    if (!ps.fixed[a]) cell[static_cast<std::size_t>(gy.cell(ps.y[a])) * gx.cells + gx.cell(ps.x[a])].push_back(a);
-  const double reach2 = reach * reach;
-  for (std::size_t a = 0; a < n; ++a) {
-    if (!ps.fixed[a]) continue;
-    const int cx = gx.cell(ps.x[a]), cy = gy.cell(ps.y[a]);
-    for (int oy = -1; oy <= 1 && !near[a]; ++oy)
-      for (int ox = -1; ox <= 1 && !near[a]; ++ox) {
-        int ix = cx + ox, iy = cy + oy;
-        if (gx.periodic) ix = (ix + gx.cells) % gx.cells;
-        if (gy.periodic) iy = (iy + gy.cells) % gy.cells;
-        if (ix < 0 || ix >= gx.cells || iy < 0 || iy >= gy.cells) continue;
-        for (const std::int32_t b : cell[static_cast<std::size_t>(iy) * gx.cells + ix]) {
-          const double dx = box.wrap_dx(ps.x[a] - ps.x[b]), dy = box.wrap_dy(ps.y[a] - ps.y[b]);
-          if (dx * dx + dy * dy <= reach2) {
-            near[a] = 1;
-            break;
-          }
-        }
-      }
-  }
-  return near;
-}
-
-}  // namespace
-
 SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
     : scene_(scene), ps_(particles), w_(scene.smoothing_kernel()) {
   skin_ = 0.5 * scene.dx;
@@ -75,7 +22,7 @@ SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
   // (support + skin) plus one spacing of drift of some moving particle at the start. Those farther away can
   // only pair with a moving particle that has drifted by more than a spacing towards the solid.
   const double reach = w_.support() + skin_ + scene.dx;
-  const std::vector<std::uint8_t> near = fixed_near_moving(ps_, scene.box, reach);
+  const std::vector<std::uint8_t> near = fixed_within_reach_of_moving(ps_, scene.box, reach);
   std::vector<std::int32_t> walls;
   for (std::size_t a = 0; a < n; ++a) {
     if (!ps_.fixed[a]) {

@@ -10,6 +10,10 @@ namespace closurelab {
 
 // With time_integration backward_euler in the resolved solver section, a resolved deconvolver with a parameter
 // rule, or cg/cgls, is a ConfigError at `path`/solver/time_integration naming the deconvolver.
+// Why a resolved deconvolver is not linear in its data (a parameter rule, or cg/cgls), or "" when it is (the
+// built-in linear ones with fixed parameters: landweber, landweber_relaxed, tikhonov, tsvd; a user-registered
+// deconvolver is taken as linear).
+std::string closure_nonlinearity(const json& resolved_deconvolver);
 void check_implicit_closure(const json& resolved_solver, const json& resolved_deconvolver, const std::string& path);
 
 }  // namespace closurelab

@@ -32,22 +32,23 @@ ParamSchema meso_solver_schema() {
   return schema;
 }
 
+std::string closure_nonlinearity(const json& deconvolver) {
+  // A parameter rule picks its parameter from the data (GCV's choice moves with v̄: under the force-density
+  // balance a backward-Euler probe happened to agree and a run reached 2.2x the analytic peak, "converged"), and a
+  // Krylov method's iterate is a nonlinear function of the data whatever its count.
+  const std::string name = deconvolver.value("name", "");
+  const std::string rule = deconvolver.value("rule", "fixed");
+  return name == "cg" || name == "cgls"
+             ? "'" + name + "' is a Krylov method: its iterate is not linear in the data, so the rate is not affine in v"
+         : rule != "fixed" ? "the parameter rule '" + rule + "' chooses the parameter from the data, so the closure is "
+                             "not linear in v (use rule fixed)"
+                           : "";
+}
+
 void check_implicit_closure(const json& solver, const json& deconvolver, const std::string& path) {
   if (solver.value("time_integration", "") != name_of(TimeIntegration::backward_euler)) return;
   // Backward Euler solves with the rate's Jacobian, probed once: right only when the closure is linear in v̄.
-  // A parameter rule picks its parameter from the data (GCV's choice moves with v̄: under the force-density
-  // balance the probe happened to agree and a run reached 2.2x the analytic peak, "converged"), and a Krylov
-  // method's iterate is a nonlinear function of the data whatever its count. The built-in linear ones with
-  // fixed parameters: landweber, landweber_relaxed, tikhonov, tsvd. (A user-registered deconvolver is checked by
-  // the probe when the cell runs.)
-  const std::string name = deconvolver.value("name", "");
-  const std::string rule = deconvolver.value("rule", "fixed");
-  const std::string why =
-      name == "cg" || name == "cgls"
-          ? "'" + name + "' is a Krylov method: its iterate is not linear in the data, so the rate is not affine in v"
-      : rule != "fixed" ? "the parameter rule '" + rule + "' chooses the parameter from the data, so the closure is "
-                          "not linear in v (use rule fixed)"
-                        : "";
+  const std::string why = closure_nonlinearity(deconvolver);
   if (!why.empty())
     throw ConfigError(path + "/solver/time_integration",
                       "backward_euler needs a closure linear in the coarse velocity (a fixed-parameter landweber, "

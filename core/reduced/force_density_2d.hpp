@@ -1,0 +1,141 @@
+#pragma once
+// The linearised force-density reduced model in two dimensions, with solids (issue 21 §3; beyond the paper): the
+// averaged balance of a doubly periodic scene whose particles stay near their lattice sites (Stokes flow, Re ≪ 1),
+// solids given by position (the scene's frozen particles, e.g. a lattice of cylinders), on a periodic tensor coarse
+// mesh of spacing Δ ≈ η'. The state is v̄ (both components) and n̄, the average of the particles' number-density
+// deviation δn (the pressure's carrier: P = c²(m n − ρ0) + P_b):
+//   ρ̄ ∂_t v̄ = Σ_{a fluid} ψ(x − q_a) (f_a + m g(q_a)),     ∂_t n̄ = Σ_a ψ(x − q_a) ṅ_a / Σ_a ψ(x − q_a),
+// the exact averaged balance (2.11) of the fluid particles (the force density: the divergence of (2.13) plus the
+// solids' constraint forces, as the 1D model's force_density balance) and the average of the summation density's
+// rate. The pair forces (5.1) and ṅ_a are linearised about the lattice at rest (uniform n0, P0), with the solid
+// particles at their known zero velocity:
+//   f_a = Σ_b μ_ab F_ab (V_a − V_b) / n0²  −  β Σ_b (δn_a + δn_b) F_ab q_ab,   β = dP/dn / n0² − 2 P0 / n0³,
+//   ṅ_a = Σ_b F_ab q_ab · (V_a − V_b),      F = w'(r)/r, q_ab = q_a − q_b.
+// Left out because the scene does not need it (DESIGN.md §1): the convective stress (2.12) (O(Re)), and the
+// background pressure's force on the displaced lattice (−2P0/n0² δ(F q), which grows with the displacement, not
+// with δn: 2P0/(c² ρ0) = 0.4 % of the pressure response at the cylinder scene's P0 = 0.002 ρ0 c²).
+//
+// Closure: the particle velocities V and density deviations δn are reconstructed from v̄ and n̄ by two registered
+// Deconvolvers on a reconstruction mesh of spacing Δ / reconstruction_refinement, interpolated bilinearly to the
+// particles; their forward operators are the averages (2.9) and Σψδn/Σψ of those particles: A_v = ρ̄⁻¹ Σ_fluid m ψ P_a
+// (the solid particles enter ρ̄ at zero velocity: the known zeros of the solid are data of the deconvolution, not
+// unknowns) and A_n = (Σψ)⁻¹ Σ_all ψ P_a. All the maps from the reconstruction to the coarse rates are affine and
+// assembled once (dense, coarse nodes × reconstruction nodes), entries with ψ below window_cutoff · ψ(0) dropped.
+// Steady state: the closure must be linear in its data (a fixed parameter); one linear solve of the probed affine
+// rate, bordered by the total density deviation, which the rate leaves free. (Explicit steps at (5.21)–(5.22)
+// diverge with a weakly regularised closure, and at α = 1e-2 had not settled to 1e-9 by t = 20 on the test lattice:
+// transients are left to the cost issue's library integrator.)
+#include <Eigen/Core>
+#include <array>
+#include <functional>
+#include <string_view>
+#include <utility>
+
+#include "core/averaging/averaging_kernel.hpp"
+#include "core/base/enum_names.hpp"
+#include "core/base/mesh.hpp"
+#include "core/base/params.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/closure/forward_operator.hpp"
+#include "core/reduced/meso_solver.hpp"
+#include "core/sph/scene.hpp"
+
+namespace closurelab {
+
+struct ForceDensity2DOptions {
+  double spacing_over_eta = 1.0;      // Δ / η'
+  int reconstruction_refinement = 2;  // the reconstruction mesh's spacing is Δ / this (1: the coarse mesh)
+  double window_cutoff = 1e-10;       // ψ below this fraction of ψ(0) is dropped from the assembled maps
+  // Coarse nodes whose window's fluid mass fraction Σ_fluid m ψ / ρ̄ is below this are held: neither evolved nor
+  // deconvolution data (their v̄ is at most this fraction of the fluid's), reported as the average of the
+  // reconstruction there.
+  double hold_fraction = 1e-3;
+  double noise_level = 0.0;           // δ handed to the deconvolvers' parameter rules (a fixed one ignores it)
+};
+
+ParamSchema force_density_2d_schema();
+ForceDensity2DOptions force_density_2d_options_from(const json& resolved_solver);
+
+// The periodic cell-centred coarse mesh of spacing ≈ spacing_over_eta · η'; ConfigError at /scene (a box not
+// periodic in both directions) or /solver/spacing_over_eta (fewer than 4 nodes along a side); and the
+// reconstruction mesh (ConfigError at /solver/reconstruction_refinement when it is finer than the lattice).
+TensorMesh2D force_density_coarse_mesh(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta);
+TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorMesh2D& coarse, int refinement);
+// The checks before any work, for validating a spec: the meshes, the lattice's particles on their sites.
+void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, const ForceDensity2DOptions& options);
+
+struct ForceDensity2DResult : ClosureRunResult {
+  TensorMesh2D mesh;                // the coarse nodes
+  Eigen::VectorXd vx, vy, density;  // v̄ and n̄ there (flat j * nx + i)
+  long free_nodes = 0;                // evolved (the others held)
+  double superficial_velocity = 0.0;  // ⟨u_x⟩ over the whole cell from the reconstructed particle velocities
+  double setup_seconds = 0.0;         // assembling the maps and the deconvolvers' setup
+  double probe_seconds = 0.0;         // probing the closure on unit data
+};
+
+class ForceDensitySolver2D {
+ public:
+  // Both deconvolvers (two instances of one configuration) must outlive the solver; bound here to A_v and A_n.
+  ForceDensitySolver2D(const Scene& scene, const AveragingKernel& kernel, Deconvolver& velocity, Deconvolver& density,
+                       ForceDensity2DOptions options);
+
+  ForceDensity2DResult run();
+  // The rates at the current state on the free nodes (both components of v̄, then n̄), for tests.
+  bool rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, Eigen::VectorXd& an, std::string& issue);
+  // The rates on every coarse node from reconstructions rx, ry (velocity) and rn (density deviation) on the
+  // reconstruction mesh: the assembled affine maps, for tests.
+  void rates_from_reconstruction(const Eigen::VectorXd& rx, const Eigen::VectorXd& ry, const Eigen::VectorXd& rn,
+                                 Eigen::VectorXd& ax, Eigen::VectorXd& ay, Eigen::VectorXd& an) const;
+  // Sets the state from fields on every coarse node (the held nodes' values are ignored).
+  void set_state(const Eigen::VectorXd& vx, const Eigen::VectorXd& vy, const Eigen::VectorXd& density);
+
+  const TensorMesh2D& coarse_mesh() const { return coarse_; }
+  const TensorMesh2D& reconstruction_mesh() const { return recon_; }
+  const ForwardOperator& velocity_operator() const { return op_v_; }
+  const ForwardOperator& density_operator() const { return op_n_; }
+  // Bilinear interpolation from the reconstruction mesh to every lattice particle (rows: particles as
+  // Scene::make_particles orders them), for tests.
+  Eigen::VectorXd interpolate_to_particles(const Eigen::VectorXd& on_reconstruction_mesh) const;
+  const std::vector<int>& free_nodes() const { return free_; }
+  // The body force's average Σ_fluid ψ m g / ρ̄ at every coarse node.
+  const Eigen::VectorXd& averaged_body_force_x() const { return body_x_; }
+
+ private:
+  struct Interp {  // bilinear weights of one particle on the reconstruction mesh
+    std::array<int, 4> node;
+    std::array<double, 4> weight;
+  };
+  bool deconvolve(Deconvolver& d, const Eigen::VectorXd& data, Eigen::VectorXd& x, std::string& issue);
+  bool steady_solve(std::string& issue);
+  double superficial_velocity(std::string& issue);
+  Eigen::VectorXd on_free(const Eigen::VectorXd& full) const;  // the free nodes' entries of a coarse field
+  // A state on the free nodes as reported on every node: held nodes by the average (`full`: every node's row of
+  // the forward operator) of the reconstruction.
+  Eigen::VectorXd reported(const Eigen::VectorXd& state, Deconvolver& d, const Eigen::MatrixXd& full,
+                           std::string& issue);
+
+  const Scene& scene_;
+  Deconvolver &velocity_, &density_;
+  ForceDensity2DOptions opt_;
+  TensorMesh2D coarse_, recon_;
+  ForwardOperator op_v_, op_n_;
+  std::vector<Interp> interp_;
+  std::vector<int> free_;                 // the evolved coarse nodes (the state's entries)
+  Eigen::MatrixXd full_v_, full_n_;       // A_v and A_n on every coarse node (the operators: free rows only)
+  std::vector<std::uint8_t> fixed_;
+  // Rates from the reconstruction (coarse nodes × reconstruction nodes), divided by ρ̄ for the momentum:
+  // viscous (both components), pressure (x and y from δn), continuity (from V_x and V_y).
+  Eigen::MatrixXd viscous_, pressure_x_, pressure_y_, continuity_x_, continuity_y_;
+  Eigen::VectorXd body_x_, body_y_;   // Σ_fluid ψ m g / ρ̄
+  Eigen::VectorXd mass_weight_;       // ρ̄ Δ² / (ρ0 L²): ⟨u⟩ = Σ mass_weight v̄ (the cell's momentum)
+  Eigen::VectorXd vx_, vy_, n_;
+  double fluid_area_per_particle_ = 0.0;
+  long matvecs_ = 0;
+  double deconv_seconds_ = 0.0, setup_seconds_ = 0.0, probe_seconds_ = 0.0;
+};
+
+// The closure must be linear in its data (a fixed parameter, not cg/cgls): ConfigError at `path`/closure/deconvolver
+// otherwise (core/reduced/implicit_closure.hpp's rule).
+void check_force_density_closure(const json& resolved_deconvolver, const std::string& path);
+
+}  // namespace closurelab

@@ -1,0 +1,212 @@
+// Experiment kind "reduced_model_2d_force_density": the linearised force-density reduced model in two dimensions
+// with solids (core/reduced/force_density_2d.hpp) on a doubly periodic scene (the cylinder lattice), against the
+// averaged direct SPH of the same box at steady state, with the Darcy permeability beside the scene's reference,
+// and the cost and speed-up (the reduced run repeated as the timing section says).
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "core/averaging/averaging.hpp"
+#include "core/base/errors.hpp"
+#include "core/base/metrics.hpp"
+#include "core/reduced/force_density_2d.hpp"
+#include "experiments/kinds/direct_reference.hpp"
+#include "experiments/kinds/permeability_validation.hpp"
+#include "experiments/kinds/reduced_model_2d.hpp"
+#include "experiments/kinds/reduced_sections.hpp"
+#include "experiments/runner/cell_config.hpp"
+#include "experiments/runner/provenance.hpp"
+
+namespace closurelab {
+
+namespace {
+
+ParamSchema force_density_closure_schema() {
+  return {object_param("deconvolver", json{{"name", "tikhonov"}},
+                       "registered deconvolver and its parameters (two instances: velocity and density deviation)"),
+          number_param("noise_level", 0.0, "delta handed to the deconvolver's parameter rule", 0.0, {})};
+}
+
+Eigen::VectorXd subset(const Eigen::VectorXd& v, const std::vector<bool>& mask) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(std::count(mask.begin(), mask.end(), true)));
+  Eigen::Index k = 0;
+  for (std::size_t n = 0; n < mask.size(); ++n)
+    if (mask[n]) out[k++] = v[static_cast<Eigen::Index>(n)];
+  return out;
+}
+
+struct Field {
+  Eigen::VectorXd x, y;
+};
+
+Eigen::VectorXd speed(const Field& f) { return (f.x.array().square() + f.y.array().square()).sqrt(); }
+
+// The error of u against ref over every node (the headline), the nodes outside the solid and those inside, each
+// max |u − r| / scale (scale: the reference's peak speed) and ‖u − r‖₂ / ‖r‖₂, with the paper's peak metric.
+json norms(const Field& u, const Field& ref, const std::vector<bool>& outside, double scale) {
+  std::vector<bool> inside(outside.size());
+  for (std::size_t n = 0; n < outside.size(); ++n) inside[n] = !outside[n];
+  json out = {{"all_nodes", vector_error_norms(u.x, u.y, ref.x, ref.y, scale).to_json()},
+              {"peak_relative_difference", peak_relative_difference(speed(u), speed(ref))}};
+  const auto part = [&](const std::vector<bool>& m) {
+    return vector_error_norms(subset(u.x, m), subset(u.y, m), subset(ref.x, m), subset(ref.y, m), scale).to_json();
+  };
+  out["fluid_nodes"] = part(outside);  // the nodes outside the solid
+  if (std::count(inside.begin(), inside.end(), true) > 0) out["solid_nodes"] = part(inside);
+  return out;
+}
+
+json field_json(const Field& f) { return {{"vx", f.x}, {"vy", f.y}}; }
+
+class ReducedModelForceDensity2D : public ExperimentKind {
+ public:
+  std::string name() const override { return "reduced_model_2d_force_density"; }
+  std::string description() const override {
+    return "two-dimensional linearised force-density reduced model with solids (velocity and density deviation "
+           "deconvolved, the exact averaged pair forces of the lattice, steady state by one linear solve) on a doubly "
+           "periodic scene, vs the averaged direct SPH, with the Darcy permeability, cost and speed-up";
+  }
+
+  std::vector<KindSection> sections() const override {
+    return {{"scene", "the scene (required; doubly periodic, solids by position)", "scene", {}},
+            {"kernel", "the averaging kernel; its eta must equal the scene's", "kernel", {}},
+            {"closure", "the deconvolution closure (dense operators on the reconstruction mesh)", "",
+             force_density_closure_schema()},
+            {"solver", "the 2D force-density solver", "", force_density_2d_schema()},
+            {"reference", "the direct SPH reference", "", reference_schema()},
+            {"timing", "how the reduced run is repeated for its time (minimum, median, spread)", "",
+             reduced_timing_schema()}};
+  }
+
+  json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
+    check_keys(cell, path, {"scene", "kernel", "closure", "solver", "reference", "timing"});
+    json out;
+    auto scene = build_scene(cell, path, reg, &out["scene"]);
+    auto kernel = build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
+    out["closure"] = resolve_section(cell, "closure", force_density_closure_schema(), path);
+    out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
+    out["solver"] = resolve_section(cell, "solver", force_density_2d_schema(), path);
+    out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
+    out["reference"]["solver"] =
+        resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
+    check_time_loop(out["reference"]["solver"], path + "/reference/solver");
+    out["timing"] = resolve_section(cell, "timing", reduced_timing_schema(), path);
+    try {
+      check_force_density_2d(*scene, *kernel, options(out));
+      check_force_density_closure(out["closure"]["deconvolver"], "");
+    } catch (const ConfigError& e) {
+      throw ConfigError(path + e.path(), e.message());
+    }
+    return out;
+  }
+
+  json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
+    const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
+    const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
+    const ForceDensity2DOptions opt = options(cfg);
+    std::optional<StoredReference> direct;
+    if (cfg.at("reference").at("direct_sph").get<bool>()) {
+      const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("reference").at("solver"),
+                                     cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene->eta,
+                                     {}};
+      direct = stored_direct_reference(request, *scene, *kernel, progress);
+    }
+    ForceDensity2DResult reduced;
+    bool repeats_identical = true;
+    int run_count = 0;
+    const RepeatedReducedRuns timing = repeat_reduced_run(
+        [&] {
+          auto dv = reg.deconvolvers.create(cfg.at("closure").at("deconvolver"), "/closure/deconvolver");
+          auto dn = reg.deconvolvers.create(cfg.at("closure").at("deconvolver"), "/closure/deconvolver");
+          const auto t_setup = std::chrono::steady_clock::now();
+          ForceDensitySolver2D solver(*scene, *kernel, *dv, *dn, opt);
+          const double setup = seconds_since(t_setup);
+          ForceDensity2DResult r = solver.run();
+          if (run_count++ > 0)
+            repeats_identical = repeats_identical && r.vx == reduced.vx && r.vy == reduced.vy && r.density == reduced.density;
+          reduced = std::move(r);
+          return ReducedRunSeconds{setup, reduced.wall_seconds};
+        },
+        timing_policy_from(cfg.at("timing")));
+    const TensorMesh2D& mesh = reduced.mesh;
+    std::vector<bool> outside(static_cast<std::size_t>(mesh.size()), true);
+    if (scene->solid_at)
+      for (int n = 0; n < mesh.size(); ++n) outside[static_cast<std::size_t>(n)] = !scene->solid_at(mesh.node(n).x(), mesh.node(n).y());
+    const Field reduced_field{reduced.vx, reduced.vy};
+    // The cell's momentum per unit mass: Σ ρ̄ v̄ Δ² / (ρ0 L²) = ⟨u⟩ (the window integrates to one over the mesh).
+    const Eigen::VectorXd rho_bar =
+        average_particles(scene->make_particles(), scene->box, *kernel, mesh, AveragingRequest{}).rho;
+    const double area = scene->box.lx * scene->box.ly;
+    const auto momentum_mean = [&](const Eigen::VectorXd& vx) {
+      return rho_bar.dot(vx) * mesh.cell_area() / (scene->rho0 * area);
+    };
+    json errors, row;
+    const double mu = scene->phase_viscosity.at(0);
+    std::optional<double> k_reduced;
+    if (scene->permeability) {
+      const Scene::Permeability& perm = *scene->permeability;
+      const double to_k = mu / (scene->rho0 * perm.body_force);
+      k_reduced = to_k * reduced.superficial_velocity;
+      errors["permeability"] = {{"reduced", *k_reduced},
+                                {"reduced_from_coarse_momentum", to_k * momentum_mean(reduced.vx)},
+                                {"reference", perm.reference},
+                                {"reduced_vs_reference", *k_reduced / perm.reference - 1.0}};
+    }
+    json fields = {{"x", mesh.x.nodes()}, {"y", mesh.y.nodes()}, {"reduced", field_json(reduced_field)},
+                   {"outside_solid", outside}, {"reduced_density_deviation", reduced.density}};
+    row["status"] = row_status(reduced.status);
+    row["reduced_model"] = reduced.to_json();
+    if (direct) {
+      const MesoFields f = average_particles(direct->particles, scene->box, *kernel, mesh, AveragingRequest{});
+      const Field direct_field{f.vx, f.vy};
+      const double scale = speed(direct_field).maxCoeff();
+      errors["vs_averaged_direct_sph"] = norms(reduced_field, direct_field, outside, scale);
+      errors["scale_peak_speed_of_averaged_direct_sph"] = scale;
+      fields["direct_average"] = field_json(direct_field);
+      row["direct_sph"] = direct->run;
+      if (k_reduced) {
+        const double k_direct = darcy_permeability(*scene, direct->particles);
+        const double to_k = mu / (scene->rho0 * scene->permeability->body_force);
+        errors["permeability"]["direct_sph"] = k_direct;
+        errors["permeability"]["direct_sph_from_coarse_momentum"] = to_k * momentum_mean(direct_field.x);
+        errors["permeability"]["reduced_vs_direct_sph"] = *k_reduced / k_direct - 1.0;
+        errors["permeability"]["direct_sph_vs_reference"] = k_direct / scene->permeability->reference - 1.0;
+      }
+    }
+    json cost = {{"coarse_nodes", mesh.size()},
+                 {"free_nodes", reduced.free_nodes},
+                 {"reconstruction_nodes", mesh.size() * opt.reconstruction_refinement * opt.reconstruction_refinement},
+                 {"assembly_and_deconvolver_setup_seconds", reduced.setup_seconds},
+                 {"probe_seconds", reduced.probe_seconds},
+                 {"deconvolution_seconds", reduced.deconvolution_seconds},
+                 {"deconvolution_matvecs", reduced.deconvolution_matvecs}};
+    add_reduced_timing(cost, timing, direct ? &direct->run : nullptr);
+    cost["repeats_identical"] = repeats_identical;
+    cost["peak_memory_mib"] = peak_memory_mib();
+    row["errors"] = errors;
+    row["cost"] = cost;
+    row["fields"] = fields;
+    return row;
+  }
+
+  // The direct reference dominates: particles n² times steps ~ n².
+  double expected_cost(const json& cfg) const override {
+    const double n = cfg.at("scene").value("n", 48);
+    return cfg.at("reference").at("direct_sph").get<bool>() ? n * n * n * n : n * n;
+  }
+
+ private:
+  static ForceDensity2DOptions options(const json& cfg) {
+    ForceDensity2DOptions o = force_density_2d_options_from(cfg.at("solver"));
+    o.noise_level = cfg.at("closure").at("noise_level").get<double>();
+    return o;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<ExperimentKind> make_reduced_model_force_density_2d_experiment() {
+  return std::make_unique<ReducedModelForceDensity2D>();
+}
+
+}  // namespace closurelab

@@ -1,0 +1,248 @@
+// The linearised force-density reduced model in 2D with solids (core/reduced/force_density_2d.hpp), on a small
+// cylinder lattice (n = 32, η' = L/8: 8 x 8 coarse nodes, a reconstruction mesh of 16 x 16). Each assembled map is
+// checked against an independent evaluation at the particles: the forward operator against the averaging of
+// core/averaging (2.9); the viscous force and the body force against the direct SPH engine's accelerations; the
+// continuity map against the engine's summation density moved along the velocity (a central difference); the
+// pressure map against the pair force (5.1) evaluated with the equation of state (a central difference in the
+// density's amplitude). Then the steady solve against explicit steps to steady state, and the bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "core/averaging/averaging.hpp"
+#include "core/base/errors.hpp"
+#include "core/base/registry.hpp"
+#include "core/reduced/force_density_2d.hpp"
+#include "core/sph/sph_engine.hpp"
+#include "core/sph/sph_kernel.hpp"
+#include "core/sph/sph_pair_force.hpp"
+
+using namespace closurelab;
+
+namespace {
+
+struct Lattice {
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<AveragingKernel> kernel;
+  std::unique_ptr<Deconvolver> dv, dn;
+};
+
+Lattice make_setup(const json& scene_extra = json::object(), const json& deconvolver = json{{"name", "tikhonov"}}) {
+  const Registry& reg = builtin_registry();
+  json s = {{"name", "cylinder-lattice"}, {"n", 32}, {"eta_over_l", 0.125}, {"radius_over_length", 0.2}};
+  s.update(scene_extra);
+  Lattice out;
+  out.scene = reg.scenes.create(reg.scenes.resolve(s, "/scene"), "/scene");
+  out.kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", out.scene->eta}}, "/kernel");
+  const json d = reg.deconvolvers.resolve(deconvolver, "/d");
+  out.dv = reg.deconvolvers.create(d, "/d");
+  out.dn = reg.deconvolvers.create(d, "/d");
+  return out;
+}
+
+ForceDensity2DOptions options(const json& solver = json::object()) {
+  return force_density_2d_options_from(resolve_params(solver, force_density_2d_schema(), "/solver", {}));
+}
+
+Eigen::VectorXd random_field(Eigen::Index n, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd x(n);
+  for (Eigen::Index k = 0; k < n; ++k) x[k] = u(gen);
+  return x;
+}
+
+// The mass-weighted average (2.9) at the coarse nodes of a per-particle quantity q (zero on the solid).
+Eigen::VectorXd averaged(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& mesh,
+                         ParticleSystem ps, const Eigen::VectorXd& q) {
+  for (std::size_t a = 0; a < ps.size(); ++a) {
+    ps.vx[a] = q[static_cast<Eigen::Index>(a)];
+    ps.vy[a] = 0.0;
+  }
+  return average_particles(ps, scene.box, kernel, mesh, AveragingRequest{}).vx;
+}
+
+double max_abs(const Eigen::VectorXd& v) { return v.cwiseAbs().maxCoeff(); }
+
+}  // namespace
+
+TEST(ForceDensity2D, ForwardOperatorIsTheAverageOfTheInterpolatedParticleVelocities) {
+  Lattice s = make_setup();
+  // hold_fraction 0.3: the nodes nearest the cylinder's centre are held, so
+  // the operator has the free rows only.
+  ForceDensitySolver2D solver(*s.scene, *s.kernel, *s.dv, *s.dn, options({{"hold_fraction", 0.3}}));
+  const Eigen::VectorXd x = random_field(solver.reconstruction_mesh().size(), 1);
+  ParticleSystem ps = s.scene->make_particles();
+  Eigen::VectorXd v = solver.interpolate_to_particles(x);
+  for (std::size_t a = 0; a < ps.size(); ++a)
+    if (ps.fixed[a]) v[static_cast<Eigen::Index>(a)] = 0.0;  // the solid's known zero
+  const Eigen::VectorXd full = averaged(*s.scene, *s.kernel, solver.coarse_mesh(), ps, v);
+  const Eigen::VectorXd model = solver.velocity_operator().apply(x);
+  const std::vector<int>& free = solver.free_nodes();
+  ASSERT_EQ(model.size(), static_cast<Eigen::Index>(free.size()));
+  EXPECT_LT(free.size(), static_cast<std::size_t>(solver.coarse_mesh().size()));
+  double err = 0.0;
+  for (std::size_t k = 0; k < free.size(); ++k) err = std::max(err, std::abs(model[static_cast<Eigen::Index>(k)] - full[free[k]]));
+  // The window cut at 1e-10 ψ(0): the averages differ by at most that fraction.
+  EXPECT_LT(err, 1e-9 * max_abs(full));
+}
+
+TEST(ForceDensity2D, ViscousAndBodyForceMapsAreTheEngineAccelerationsAveraged) {
+  Lattice s = make_setup();
+  ForceDensitySolver2D solver(*s.scene, *s.kernel, *s.dv, *s.dn, options());
+  const Eigen::Index nr = solver.reconstruction_mesh().size();
+  const Eigen::VectorXd rx = random_field(nr, 2), ry = random_field(nr, 3);
+  ParticleSystem ps = s.scene->make_particles();
+  const Eigen::VectorXd vx = solver.interpolate_to_particles(rx), vy = solver.interpolate_to_particles(ry);
+  for (std::size_t a = 0; a < ps.size(); ++a)
+    if (!ps.fixed[a]) ps.vx[a] = vx[static_cast<Eigen::Index>(a)], ps.vy[a] = vy[static_cast<Eigen::Index>(a)];
+  SphEngine engine(*s.scene, ps);
+  engine.compute_accelerations();
+  Eigen::VectorXd ax = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ps.size())), ay = ax;
+  for (std::int32_t a : engine.moving()) ax[a] = engine.ax()[static_cast<std::size_t>(a)], ay[a] = engine.ay()[static_cast<std::size_t>(a)];
+  const Eigen::VectorXd ref_x = averaged(*s.scene, *s.kernel, solver.coarse_mesh(), ps, ax);
+  const Eigen::VectorXd ref_y = averaged(*s.scene, *s.kernel, solver.coarse_mesh(), ps, ay);
+  Eigen::VectorXd mx, my, mn;
+  solver.rates_from_reconstruction(rx, ry, Eigen::VectorXd::Zero(nr), mx, my, mn);
+  // Round-off of the pair sums (the lattice's uniform pressure exerts no net force) and the window's cut.
+  EXPECT_LT(max_abs(mx - ref_x), 1e-8 * max_abs(ref_x));
+  EXPECT_LT(max_abs(my - ref_y), 1e-8 * max_abs(ref_y));
+  EXPECT_GT(max_abs(solver.averaged_body_force_x()), 0.0);
+}
+
+TEST(ForceDensity2D, ContinuityMapIsTheSummationDensityRate) {
+  Lattice s = make_setup();
+  ForceDensitySolver2D solver(*s.scene, *s.kernel, *s.dv, *s.dn, options());
+  const Eigen::Index nr = solver.reconstruction_mesh().size();
+  const Eigen::VectorXd rx = random_field(nr, 4), ry = random_field(nr, 5);
+  const Eigen::VectorXd vx = solver.interpolate_to_particles(rx), vy = solver.interpolate_to_particles(ry);
+  // n_a(q + h V) by the engine, fluid particles moved, the solid at rest; central difference in h.
+  const double h = 1e-5 * s.scene->dx;
+  const auto density_at = [&](double step) {
+    ParticleSystem ps = s.scene->make_particles();
+    for (std::size_t a = 0; a < ps.size(); ++a)
+      if (!ps.fixed[a]) ps.x[a] += step * vx[static_cast<Eigen::Index>(a)], ps.y[a] += step * vy[static_cast<Eigen::Index>(a)];
+    SphEngine engine(*s.scene, ps);
+    engine.compute_accelerations();
+    const std::vector<double>& n = engine.number_density();
+    return Eigen::Map<const Eigen::VectorXd>(n.data(), static_cast<Eigen::Index>(n.size())).eval();
+  };
+  const Eigen::VectorXd rate = (density_at(h) - density_at(-h)) / (2.0 * h);
+  // The engine leaves solid particles beyond the reach of the fluid out (their density does not change).
+  const Eigen::VectorXd ref = averaged(*s.scene, *s.kernel, solver.coarse_mesh(), s.scene->make_particles(), rate);
+  Eigen::VectorXd mx, my, mn;
+  solver.rates_from_reconstruction(rx, ry, Eigen::VectorXd::Zero(nr), mx, my, mn);
+  EXPECT_LT(max_abs(mn - ref), 1e-6 * max_abs(ref));  // O(h²) of the difference, with h = 1e-5 ε'
+}
+
+TEST(ForceDensity2D, PressureMapIsTheLinearisedPairForce) {
+  Lattice s = make_setup({{"background_pressure_factor", 0.01}});
+  const Scene& scene = *s.scene;
+  ForceDensitySolver2D solver(scene, *s.kernel, *s.dv, *s.dn, options());
+  const Eigen::Index nr = solver.reconstruction_mesh().size();
+  const Eigen::VectorXd rn = random_field(nr, 6);
+  const Eigen::VectorXd dn = solver.interpolate_to_particles(rn);
+  const ParticleSystem ps = scene.make_particles();
+  const SmoothingKernel w = scene.smoothing_kernel();
+  // n0 of the lattice, then f_a = −Σ_b (P_a/n_a² + P_b/n_b²) F q_ab with n = n0 + ε δn, by a plain all-pairs loop.
+  const auto min_image = [&](double d, double l) { return d - l * std::nearbyint(d / l); };
+  const std::size_t np = ps.size();
+  double n0 = w.w(0.0);
+  for (std::size_t b = 1; b < np; ++b) {
+    const double r = std::hypot(min_image(ps.x[0] - ps.x[b], scene.box.lx), min_image(ps.y[0] - ps.y[b], scene.box.ly));
+    if (r < w.support()) n0 += w.w(r);
+  }
+  const double m = scene.particle_mass();
+  const auto forces = [&](double eps, Eigen::VectorXd& fx, Eigen::VectorXd& fy) {
+    fx = fy = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(np));
+    for (std::size_t a = 0; a < np; ++a) {
+      if (ps.fixed[a]) continue;
+      const double na = n0 + eps * dn[static_cast<Eigen::Index>(a)];
+      for (std::size_t b = 0; b < np; ++b) {
+        const double qx = min_image(ps.x[a] - ps.x[b], scene.box.lx), qy = min_image(ps.y[a] - ps.y[b], scene.box.ly);
+        const double r = std::hypot(qx, qy);
+        if (b == a || r >= w.support()) continue;
+        const double nb = n0 + eps * dn[static_cast<Eigen::Index>(b)];
+        const Vec2 f = sph_pair_force(scene.pressure(na, m) / (na * na), scene.pressure(nb, m) / (nb * nb), 0.0, na, nb,
+                                      w.dw(r) / r, Vec2(qx, qy), Vec2::Zero());
+        fx[static_cast<Eigen::Index>(a)] += f.x() / m;
+        fy[static_cast<Eigen::Index>(a)] += f.y() / m;
+      }
+    }
+  };
+  const double eps = 1e-4 * n0;
+  Eigen::VectorXd fxp, fyp, fxm, fym;
+  forces(eps, fxp, fyp);
+  forces(-eps, fxm, fym);
+  const Eigen::VectorXd ref_x = averaged(scene, *s.kernel, solver.coarse_mesh(), ps, (fxp - fxm) / (2.0 * eps));
+  const Eigen::VectorXd ref_y = averaged(scene, *s.kernel, solver.coarse_mesh(), ps, (fyp - fym) / (2.0 * eps));
+  Eigen::VectorXd mx, my, mn;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nr);
+  solver.rates_from_reconstruction(zero, zero, rn, mx, my, mn);
+  mx -= solver.averaged_body_force_x();
+  EXPECT_LT(max_abs(mx - ref_x), 1e-6 * max_abs(ref_x));
+  EXPECT_LT(max_abs(my - ref_y), 1e-6 * max_abs(ref_y));
+}
+
+TEST(ForceDensity2D, SteadySolveZeroesTheRates) {
+  // The rates at the solved state, each against its scale: the averaged body force for the momentum, the
+  // continuity map's response to the solved velocity for the density.
+  Lattice s = make_setup();
+  ForceDensitySolver2D solver(*s.scene, *s.kernel, *s.dv, *s.dn, options());
+  const ForceDensity2DResult r = solver.run();
+  ASSERT_EQ(r.status, Status::converged) << r.message;
+  solver.set_state(r.vx, r.vy, r.density);
+  Eigen::VectorXd ax, ay, an, ax0, ay0, an0;
+  std::string issue;
+  ASSERT_TRUE(solver.rate(ax, ay, an, issue)) << issue;
+  const Eigen::Index nc = solver.coarse_mesh().size();
+  solver.set_state(r.vx, r.vy, Eigen::VectorXd::Zero(nc));
+  ASSERT_TRUE(solver.rate(ax0, ay0, an0, issue)) << issue;
+  const double force = max_abs(solver.averaged_body_force_x());
+  EXPECT_LT(max_abs(ax), 1e-9 * force);
+  EXPECT_LT(max_abs(ay), 1e-9 * force);
+  EXPECT_GT(max_abs(ax0 - ax), 1e-3 * force);  // the pressure matters: without n̄ the balance fails
+  EXPECT_LT(max_abs(an), 1e-9 * max_abs(an0) + 1e-12);
+}
+
+TEST(ForceDensity2D, PermeabilityIsTheTransverseFlowsNotTheAxialOne) {
+  // Without the pressure the model would carry the flow along the cylinders' axes (μ∇²u = −ρg around the solid),
+  // whose permeability at c = 0.126 is about twice the transverse one. The direct SPH at this resolution (n = 32)
+  // is about 10 % high (first order in ε'; results/cylinders), the reduced model with it.
+  Lattice s = make_setup();
+  ForceDensitySolver2D solver(*s.scene, *s.kernel, *s.dv, *s.dn, options());
+  const ForceDensity2DResult r = solver.run();
+  ASSERT_EQ(r.status, Status::converged) << r.message;
+  const Scene::Permeability& perm = s.scene->permeability.value();
+  const double k = s.scene->phase_viscosity[0] * r.superficial_velocity / (s.scene->rho0 * perm.body_force);
+  EXPECT_NEAR(k / perm.reference, 1.0, 0.25) << "k / k_ref = " << k / perm.reference;
+  std::printf("k / k_ref = %.4f (free nodes %ld of %d)\n", k / perm.reference, r.free_nodes, r.mesh.size());
+}
+
+TEST(ForceDensity2D, BadInputIsAConfigErrorNamingThePath) {
+  const Registry& reg = builtin_registry();
+  const auto path_of = [](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const ConfigError& e) {
+      return e.path();
+    }
+    return std::string("(no error)");
+  };
+  Lattice s = make_setup();
+  EXPECT_EQ(path_of([&] { check_force_density_2d(*s.scene, *s.kernel, options({{"reconstruction_refinement", 8}})); }),
+            "/solver/reconstruction_refinement");
+  EXPECT_EQ(path_of([&] { check_force_density_2d(*s.scene, *s.kernel, options({{"spacing_over_eta", 3.0}})); }),
+            "/solver/spacing_over_eta");
+  const auto channel = reg.scenes.create(reg.scenes.resolve(json{{"name", "poiseuille-uniform"}}, "/scene"), "/scene");
+  const auto k = reg.kernels.create(json{{"name", "gaussian"}, {"eta", channel->eta}}, "/kernel");
+  EXPECT_EQ(path_of([&] { check_force_density_2d(*channel, *k, options()); }), "/scene");
+  EXPECT_EQ(path_of([&] {
+              check_force_density_closure(reg.deconvolvers.resolve(json{{"name", "tikhonov"}, {"rule", "gcv"}}, "/d"), "");
+            }),
+            "/closure/deconvolver");
+  EXPECT_EQ(path_of([&] { check_force_density_closure(reg.deconvolvers.resolve(json{{"name", "cgls"}}, "/d"), ""); }),
+            "/closure/deconvolver");
+}

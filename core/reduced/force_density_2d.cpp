@@ -171,13 +171,11 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
   const double p0 = scene.pressure(n0, m), dn = 1e-6 * n0;
   const double dp_dn = (scene.pressure(n0 + dn, m) - scene.pressure(n0 - dn, m)) / (2.0 * dn);
   const double beta = dp_dn / (n0 * n0) - 2.0 * p0 / (n0 * n0 * n0);
-  // The window: separable, periodic images summed, truncated at window_cutoff · ψ(0).
-  const auto axis_window = [&](const UniformMesh1D& axis, double q, std::vector<std::pair<int, double>>& out) {
-    out.clear();
-    for_nodes_within(axis, q, kernel.support_radius(), [&](int n, double d) {
-      out.emplace_back(n, kernel.factor(d));
-    });
-    // for_nodes_within visits each image separately: merge the images of one node.
+  // The window: separable, periodic images summed; each axis's factor below window_cutoff · φ(0) is dropped.
+  const auto axis_window = [&](const UniformMesh1D& axis, double q) {
+    std::vector<std::pair<int, double>> out;
+    for_nodes_within(axis, q, kernel.support_radius(), [&](int n, double d) { out.emplace_back(n, kernel.factor(d)); });
+    // for_nodes_within visits each image separately: merge the images of one node, then drop the tail.
     std::sort(out.begin(), out.end());
     std::size_t k = 0;
     for (std::size_t u = 0; u < out.size(); ++u) {
@@ -187,84 +185,120 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
         out[k++] = out[u];
     }
     out.resize(k);
+    const double drop = opt_.window_cutoff * kernel.factor(0.0);
+    out.erase(std::remove_if(out.begin(), out.end(), [&](const auto& e) { return e.second < drop; }), out.end());
+    return out;
   };
-  const double psi0 = kernel.factor(0.0) * kernel.factor(0.0), drop = opt_.window_cutoff * psi0;
   const Eigen::Index nc = coarse_.size(), nr = recon_.size();
+  const int ncx = coarse_.nx(), nrx = recon_.nx(), nry = recon_.ny();
   Eigen::VectorXd rho_bar = Eigen::VectorXd::Zero(nc), fluid_mass = Eigen::VectorXd::Zero(nc),
                   psi_sum = Eigen::VectorXd::Zero(nc);
   body_x_ = body_y_ = Eigen::VectorXd::Zero(nc);
-  Eigen::MatrixXd a_v = Eigen::MatrixXd::Zero(nc, nr), a_n = Eigen::MatrixXd::Zero(nc, nr);
-  viscous_ = pressure_x_ = pressure_y_ = continuity_x_ = continuity_y_ = Eigen::MatrixXd::Zero(nc, nr);
-  ScratchRow visc(nr), px(nr), py(nr), cx(nr), cy(nr);
-  std::vector<std::pair<int, double>> wx, wy, window;
-  std::vector<std::pair<int, double>> entries;
-  const auto add_interp = [&](ScratchRow& row, std::size_t b, double c) {
-    for (int k = 0; k < 4; ++k) row.add(interp_[b].node[k], c * interp_[b].weight[k]);
+  // Seven maps M(n, r) = Σ_a ψ(x_n − q_a) row_a(r), row_a a particle's sparse row over the reconstruction nodes:
+  // the velocity and density operators (unscaled), the viscous force, the pressure force (x, y), the continuity
+  // rate (from V_x, V_y). ψ is separable, so they are contracted lattice row by lattice row: first over the
+  // particles of the row with φ(x_i − x_a) into a block (coarse column i × the reconstruction rows the particle
+  // rows touch × reconstruction column), then the block with φ(y_j − y_row) into M: O(N · J_x · stencil) +
+  // O(rows · J_y · N_C,x · block) instead of O(N · J_x J_y · stencil).
+  enum Map { op_v, op_n, visc, press_x, press_y, cont_x, cont_y, map_count };
+  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  std::array<RowMajorMatrix, map_count> maps;  // row-major while accumulating: a block row is contiguous
+  for (auto& mat : maps) mat = RowMajorMatrix::Zero(nc, nr);
+  std::array<ScratchRow, map_count> rows{ScratchRow(nr), ScratchRow(nr), ScratchRow(nr), ScratchRow(nr),
+                                         ScratchRow(nr), ScratchRow(nr), ScratchRow(nr)};
+  const auto add_interp = [&](Map k, std::size_t b, double c) {
+    for (int u = 0; u < 4; ++u) rows[k].add(interp_[b].node[u], c * interp_[b].weight[u]);
   };
-  // Accumulates Σ_window ψ · row into the dense map (scaled later).
-  const auto spread = [&](ScratchRow& row, Eigen::MatrixXd& into) {
-    entries.clear();
-    row.drain([&](int r, double v) { entries.emplace_back(r, v); });
-    for (const auto& [n, psi] : window)
-      for (const auto& [r, v] : entries) into(n, r) += psi * v;
-  };
-  for (std::size_t a = 0; a < np; ++a) {
-    axis_window(coarse_.x, lattice.x[a], wx);
-    axis_window(coarse_.y, lattice.y[a], wy);
-    window.clear();
-    for (const auto& [j, fy] : wy)
-      for (const auto& [i, fx] : wx)
-        if (fx * fy >= drop) window.emplace_back(coarse_.index(i, j), fx * fy);
-    const bool fluid = !fixed_[a];
-    const long i = std::lround(lattice.x[a] / dx - 0.5), j = std::lround(lattice.y[a] / dx - 0.5);
-    const double mu_a = scene.phase_viscosity.at(static_cast<std::size_t>(lattice.phase[a]));
-    for (const Offset& o : stencil) {
-      const long bi = ((i + o.di) % lnx + lnx) % lnx, bj = ((j + o.dj) % lny + lny) % lny;
-      const auto b = static_cast<std::size_t>(site[static_cast<std::size_t>(bj * lnx + bi)]);
-      const bool b_fluid = !fixed_[b];
-      if (fluid) {  // the force on a fluid particle: viscous (V_a − V_b), pressure (δn_a + δn_b)
-        const double mu_ab =
-            pair_viscosity(mu_a, scene.phase_viscosity.at(static_cast<std::size_t>(lattice.phase[b])),
-                           scene.pair_viscosity_mean);
-        const double c = mu_ab * o.F / (n0 * n0);
-        add_interp(visc, a, c);
-        if (b_fluid) add_interp(visc, b, -c);
-        add_interp(px, a, -beta * o.F * o.qx);
-        add_interp(px, b, -beta * o.F * o.qx);
-        add_interp(py, a, -beta * o.F * o.qy);
-        add_interp(py, b, -beta * o.F * o.qy);
+  std::vector<std::vector<std::pair<int, double>>> wx_of_column(static_cast<std::size_t>(lnx));
+  for (int i = 0; i < lnx; ++i) wx_of_column[static_cast<std::size_t>(i)] = axis_window(coarse_.x, (i + 0.5) * dx);
+  constexpr int max_slots = 16;  // reconstruction rows one lattice row's particle rows touch
+  std::vector<int> slot_of(static_cast<std::size_t>(nry), -1), slot_row;
+  std::array<std::vector<double>, map_count> block;
+  for (auto& v : block) v.assign(static_cast<std::size_t>(ncx) * max_slots * nrx, 0.0);
+  for (int j = 0; j < lny; ++j) {
+    const std::vector<std::pair<int, double>> wy = axis_window(coarse_.y, (j + 0.5) * dx);
+    for (int i = 0; i < lnx; ++i) {
+      const auto a = static_cast<std::size_t>(site[static_cast<std::size_t>(j * lnx + i)]);
+      const std::vector<std::pair<int, double>>& wx = wx_of_column[static_cast<std::size_t>(i)];
+      const bool fluid = !fixed_[a];
+      const double mu_a = scene.phase_viscosity.at(static_cast<std::size_t>(lattice.phase[a]));
+      for (const Offset& o : stencil) {
+        const long bi = ((i + o.di) % lnx + lnx) % lnx, bj = ((j + o.dj) % lny + lny) % lny;
+        const auto b = static_cast<std::size_t>(site[static_cast<std::size_t>(bj * lnx + bi)]);
+        const bool b_fluid = !fixed_[b];
+        if (fluid) {  // the force on a fluid particle: viscous (V_a − V_b), pressure (δn_a + δn_b)
+          const double mu_ab = pair_viscosity(
+              mu_a, scene.phase_viscosity.at(static_cast<std::size_t>(lattice.phase[b])), scene.pair_viscosity_mean);
+          const double c = mu_ab * o.F / (n0 * n0);
+          add_interp(visc, a, c);
+          if (b_fluid) add_interp(visc, b, -c);
+          add_interp(press_x, a, -beta * o.F * o.qx);
+          add_interp(press_x, b, -beta * o.F * o.qx);
+          add_interp(press_y, a, -beta * o.F * o.qy);
+          add_interp(press_y, b, -beta * o.F * o.qy);
+          add_interp(cont_x, a, o.F * o.qx);  // ṅ_a = Σ_b F q_ab · (V_a − V_b), the solid's velocity zero
+          add_interp(cont_y, a, o.F * o.qy);
+        }
+        if (b_fluid) {
+          add_interp(cont_x, b, -o.F * o.qx);
+          add_interp(cont_y, b, -o.F * o.qy);
+        }
       }
-      // ṅ_a = Σ_b F q_ab · (V_a − V_b), the solid's velocity zero, for every particle
-      if (fluid) {
-        add_interp(cx, a, o.F * o.qx);
-        add_interp(cy, a, o.F * o.qy);
-      }
-      if (b_fluid) {
-        add_interp(cx, b, -o.F * o.qx);
-        add_interp(cy, b, -o.F * o.qy);
-      }
+      if (fluid) add_interp(op_v, a, m);
+      add_interp(op_n, a, 1.0);
+      for (int k = 0; k < map_count; ++k)
+        rows[static_cast<std::size_t>(k)].drain([&](int r, double v) {
+          const int ry = r / nrx, rx = r % nrx;
+          int& slot = slot_of[static_cast<std::size_t>(ry)];
+          if (slot < 0) {
+            if (static_cast<int>(slot_row.size()) == max_slots)
+              throw std::logic_error("force density map: a lattice row touches too many reconstruction rows");
+            slot = static_cast<int>(slot_row.size());
+            slot_row.push_back(ry);
+          }
+          double* out = block[static_cast<std::size_t>(k)].data() + static_cast<std::size_t>(slot) * nrx + rx;
+          for (const auto& [ci, fx] : wx) out[static_cast<std::size_t>(ci) * max_slots * nrx] += fx * v;
+        });
+      const Vec2 g = scene.body_force ? scene.body_force(lattice.x[a], lattice.y[a])
+                                      : Vec2(scene.force_x ? scene.force_x(lattice.y[a]) : 0.0, 0.0);
+      for (const auto& [cj, fy] : wy)
+        for (const auto& [ci, fx] : wx) {
+          const Eigen::Index n = coarse_.index(ci, cj);
+          const double psi = fx * fy;
+          rho_bar[n] += m * psi;
+          psi_sum[n] += psi;
+          if (fluid) {
+            fluid_mass[n] += m * psi;
+            body_x_[n] += m * psi * g.x();
+            body_y_[n] += m * psi * g.y();
+          }
+        }
     }
-    for (const auto& [n, psi] : window) {
-      rho_bar[n] += m * psi;
-      psi_sum[n] += psi;
-      if (fluid) {
-        fluid_mass[n] += m * psi;
-        const Vec2 g = scene.body_force ? scene.body_force(lattice.x[a], lattice.y[a])
-                                        : Vec2(scene.force_x ? scene.force_x(lattice.y[a]) : 0.0, 0.0);
-        body_x_[n] += m * psi * g.x();
-        body_y_[n] += m * psi * g.y();
-      }
-      for (int k = 0; k < 4; ++k) {
-        if (fluid) a_v(n, interp_[a].node[k]) += m * psi * interp_[a].weight[k];
-        a_n(n, interp_[a].node[k]) += psi * interp_[a].weight[k];
-      }
+    // The row's block into the maps, with φ(y_j − y_row).
+    for (int k = 0; k < map_count; ++k) {
+      std::vector<double>& blk = block[static_cast<std::size_t>(k)];
+      RowMajorMatrix& into = maps[static_cast<std::size_t>(k)];
+      for (std::size_t s = 0; s < slot_row.size(); ++s)
+        for (int ci = 0; ci < ncx; ++ci) {
+          double* src = blk.data() + (static_cast<std::size_t>(ci) * max_slots + s) * nrx;
+          for (const auto& [cj, fy] : wy) {
+            const Eigen::Index n = coarse_.index(ci, cj);
+            const Eigen::Index r0 = static_cast<Eigen::Index>(slot_row[s]) * nrx;
+            double* dst = into.data() + n * nr + r0;
+            for (int rx = 0; rx < nrx; ++rx) dst[rx] += fy * src[rx];
+          }
+          std::fill(src, src + nrx, 0.0);
+        }
     }
-    spread(visc, viscous_);
-    spread(px, pressure_x_);
-    spread(py, pressure_y_);
-    spread(cx, continuity_x_);
-    spread(cy, continuity_y_);
+    for (int ry : slot_row) slot_of[static_cast<std::size_t>(ry)] = -1;
+    slot_row.clear();
   }
+  Eigen::MatrixXd a_v = maps[op_v], a_n = maps[op_n];
+  viscous_ = maps[visc];
+  pressure_x_ = maps[press_x];
+  pressure_y_ = maps[press_y];
+  continuity_x_ = maps[cont_x];
+  continuity_y_ = maps[cont_y];
   const Eigen::VectorXd inv_rho = rho_bar.cwiseInverse(), inv_psi = psi_sum.cwiseInverse();
   viscous_ = inv_rho.asDiagonal() * viscous_;
   pressure_x_ = inv_rho.asDiagonal() * pressure_x_;
@@ -295,6 +329,7 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
     op->solution_mesh = recon_;
     op->dimension = 2;
   }
+  assembly_seconds_ = seconds_since(t0);
   try {
     velocity_.setup(op_v_);
     density_.setup(op_n_);
@@ -464,6 +499,7 @@ ForceDensity2DResult ForceDensitySolver2D::run() {
   res.deconvolution_matvecs = matvecs_;
   res.deconvolution_seconds = deconv_seconds_;
   res.setup_seconds = setup_seconds_;
+  res.assembly_seconds = assembly_seconds_;
   res.probe_seconds = probe_seconds_;
   return res;
 }

@@ -70,6 +70,7 @@ struct ForceDensity2DResult : ClosureRunResult {
   long free_nodes = 0;                // evolved (the others held)
   double superficial_velocity = 0.0;  // ⟨u_x⟩ over the whole cell from the reconstructed particle velocities
   double setup_seconds = 0.0;         // assembling the maps and the deconvolvers' setup
+  double assembly_seconds = 0.0;      // of which assembling the maps
   double probe_seconds = 0.0;         // probing the closure on unit data
 };
 
@@ -131,7 +132,7 @@ class ForceDensitySolver2D {
   Eigen::VectorXd vx_, vy_, n_;
   double fluid_area_per_particle_ = 0.0;
   long matvecs_ = 0;
-  double deconv_seconds_ = 0.0, setup_seconds_ = 0.0, probe_seconds_ = 0.0;
+  double deconv_seconds_ = 0.0, setup_seconds_ = 0.0, assembly_seconds_ = 0.0, probe_seconds_ = 0.0;
 };
 
 // The closure must be linear in its data (a fixed parameter, not cg/cgls): ConfigError at `path`/closure/deconvolver

@@ -177,6 +177,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
                  {"free_nodes", reduced.free_nodes},
                  {"reconstruction_nodes", mesh.size() * opt.reconstruction_refinement * opt.reconstruction_refinement},
                  {"assembly_and_deconvolver_setup_seconds", reduced.setup_seconds},
+                 {"assembly_seconds", reduced.assembly_seconds},
                  {"probe_seconds", reduced.probe_seconds},
                  {"deconvolution_seconds", reduced.deconvolution_seconds},
                  {"deconvolution_matvecs", reduced.deconvolution_matvecs}};

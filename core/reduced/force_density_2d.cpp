@@ -22,9 +22,12 @@ ParamSchema force_density_2d_schema() {
           number_param("window_cutoff", d.window_cutoff,
                        "window values below this fraction of psi(0) are dropped from the assembled maps", 0.0, 1e-3),
           number_param("hold_fraction", d.hold_fraction,
-                       "coarse nodes whose window's fluid mass fraction is below this are held (not evolved, not "
-                       "deconvolution data) and report the average of the reconstruction",
-                       0.0, 0.5)};
+                       "coarse nodes whose window's fluid mass fraction is below this are held: not evolved, not "
+                       "deconvolution data",
+                       0.0, 0.5),
+          string_param("held_node_value", name_of(d.held_node_value),
+                       "what a held node reports: imposed (zero) or reconstructed (the average of the reconstruction)",
+                       names_of<HeldNodeValue>())};
 }
 
 ForceDensity2DOptions force_density_2d_options_from(const json& s) {
@@ -33,6 +36,7 @@ ForceDensity2DOptions force_density_2d_options_from(const json& s) {
   o.reconstruction_refinement = s.at("reconstruction_refinement").get<int>();
   o.window_cutoff = s.at("window_cutoff").get<double>();
   o.hold_fraction = s.at("hold_fraction").get<double>();
+  o.held_node_value = parse_name<HeldNodeValue>(s.at("held_node_value").get<std::string>(), "/solver/held_node_value");
   return o;
 }
 
@@ -77,6 +81,10 @@ void check_force_density_closure(const json& deconvolver, const std::string& pat
   if (!why.empty())
     throw ConfigError(path + "/closure/deconvolver", "the steady solve probes the closure once, which needs it "
                                                      "linear in the data; " + why);
+  if (deconvolver.value("regularizer", "identity") != "identity")
+    throw ConfigError(path + "/closure/deconvolver/regularizer",
+                      "the velocity's unknowns are the reconstruction nodes outside the solid, not a tensor mesh: "
+                      "difference regularizers do not apply (use identity)");
 }
 
 namespace {
@@ -323,12 +331,17 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
     for (std::size_t k = 0; k < free_.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = full.row(free_[k]);
     return out;
   };
-  op_v_ = ForwardOperator::from_dense(free_rows(a_v));
+  // The velocity's unknowns: the reconstruction nodes that some fluid particle's interpolation reads; the others
+  // lie inside the solid, where the velocity is the known zero (left free they would be fixed by the
+  // regularisation alone, and leak into the fluid particles next to the surface).
+  for (Eigen::Index r = 0; r < nr; ++r)
+    if (a_v.col(r).cwiseAbs().maxCoeff() > 0.0) velocity_columns_.push_back(static_cast<int>(r));
+  const Eigen::MatrixXd a_v_free = free_rows(a_v);
+  Eigen::MatrixXd a_v_op(a_v_free.rows(), static_cast<Eigen::Index>(velocity_columns_.size()));
+  for (std::size_t k = 0; k < velocity_columns_.size(); ++k)
+    a_v_op.col(static_cast<Eigen::Index>(k)) = a_v_free.col(velocity_columns_[k]);
+  op_v_ = ForwardOperator::from_dense(std::move(a_v_op));
   op_n_ = ForwardOperator::from_dense(free_rows(a_n));
-  for (ForwardOperator* op : {&op_v_, &op_n_}) {
-    op->solution_mesh = recon_;
-    op->dimension = 2;
-  }
   assembly_seconds_ = seconds_since(t0);
   try {
     velocity_.setup(op_v_);
@@ -366,7 +379,12 @@ bool ForceDensitySolver2D::deconvolve(Deconvolver& d, const Eigen::VectorXd& dat
   const DeconvolutionResult r = d.solve(data, opt_.noise_level);
   matvecs_ += r.cost.matvecs;
   deconv_seconds_ += seconds_since(t0);
-  x = r.x;
+  if (&d == &velocity_) {  // on every reconstruction node: zero inside the solid
+    x = Eigen::VectorXd::Zero(recon_.size());
+    for (std::size_t k = 0; k < velocity_columns_.size(); ++k) x[velocity_columns_[k]] = r.x[static_cast<Eigen::Index>(k)];
+  } else {
+    x = r.x;
+  }
   if (!x.allFinite()) {
     issue = "deconvolution returned non-finite values (" + r.stats.message + ")";
     return false;
@@ -443,8 +461,14 @@ bool ForceDensitySolver2D::steady_solve(std::string& issue) {
   rhs.segment(f, f) = -on_free(viscous_ * x0v + pressure_y_ * x0n + body_y_);
   rhs.segment(2 * f, f) = -on_free(continuity_x_ * x0v + continuity_y_ * x0v);
   probe_seconds_ = seconds_since(t0);
+  // Equilibrated (rows, then columns, to unit largest entry): the momentum and density rows differ in units, and
+  // free nodes with a small fluid fraction have small rows; the condition estimate is then of the problem itself.
+  const Eigen::VectorXd row_scale = big.rowwise().lpNorm<Eigen::Infinity>().cwiseMax(1e-300).cwiseInverse();
+  big = row_scale.asDiagonal() * big;
+  const Eigen::VectorXd col_scale = big.colwise().lpNorm<Eigen::Infinity>().transpose().cwiseMax(1e-300).cwiseInverse();
+  big = big * col_scale.asDiagonal();
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(big);
-  const Eigen::VectorXd z = lu.solve(rhs);
+  const Eigen::VectorXd z = col_scale.cwiseProduct(lu.solve(row_scale.cwiseProduct(rhs)));
   if (!z.allFinite() || lu.rcond() < 1e-15) {
     std::ostringstream os;
     os << "the steady system is singular to working precision (reciprocal condition " << lu.rcond() << ")";
@@ -470,7 +494,7 @@ double ForceDensitySolver2D::superficial_velocity(std::string& issue) {
 Eigen::VectorXd ForceDensitySolver2D::reported(const Eigen::VectorXd& state, Deconvolver& d,
                                                const Eigen::MatrixXd& full, std::string& issue) {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(coarse_.size()), x;
-  if (free_.size() < static_cast<std::size_t>(coarse_.size())) {
+  if (opt_.held_node_value == HeldNodeValue::reconstructed && free_.size() < static_cast<std::size_t>(coarse_.size())) {
     if (!deconvolve(d, state, x, issue)) return Eigen::VectorXd::Constant(coarse_.size(), std::nan(""));
     out = full * x;  // held nodes: the average of the reconstruction
   }

@@ -34,7 +34,7 @@ def row_line(r):
     p = e.get("permeability", {})
     t = c.get("reduced_timing", {})
     status = r.get("status", "?")
-    msg = get(r, "reduced_model", "message") or ""
+    msg = r.get("error") or get(r, "reduced_model", "message") or ""
     if status != "ok":
         return "| %s | %s: %s | | | | | | | | |" % (r["label"], status, msg[:90])
     return "| %s | %s | %s | %s | %s | %s | %s | %s | %.3g s (spread %.0f %%) | %.0f s | %.0f |" % (

@@ -73,9 +73,12 @@ TEST(ForceDensity2D, ForwardOperatorIsTheAverageOfTheInterpolatedParticleVelocit
   // hold_fraction 0.3: the nodes nearest the cylinder's centre are held, so
   // the operator has the free rows only.
   ForceDensitySolver2D solver(*s.scene, *s.kernel, *s.dv, *s.dn, options({{"hold_fraction", 0.3}}));
-  const Eigen::VectorXd x = random_field(solver.reconstruction_mesh().size(), 1);
+  const std::vector<int>& unknowns = solver.velocity_unknowns();
+  const Eigen::VectorXd x = random_field(static_cast<Eigen::Index>(unknowns.size()), 1);
+  Eigen::VectorXd x_full = Eigen::VectorXd::Zero(solver.reconstruction_mesh().size());
+  for (std::size_t k = 0; k < unknowns.size(); ++k) x_full[unknowns[k]] = x[static_cast<Eigen::Index>(k)];
   ParticleSystem ps = s.scene->make_particles();
-  Eigen::VectorXd v = solver.interpolate_to_particles(x);
+  Eigen::VectorXd v = solver.interpolate_to_particles(x_full);
   for (std::size_t a = 0; a < ps.size(); ++a)
     if (ps.fixed[a]) v[static_cast<Eigen::Index>(a)] = 0.0;  // the solid's known zero
   const Eigen::VectorXd full = averaged(*s.scene, *s.kernel, solver.coarse_mesh(), ps, v);

@@ -209,7 +209,6 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
   // rows touch × reconstruction column), then the block with φ(y_j − y_row) into M: O(N · J_x · stencil) +
   // O(rows · J_y · N_C,x · block) instead of O(N · J_x J_y · stencil).
   enum Map { op_v, op_n, visc, press_x, press_y, cont_x, cont_y, map_count };
-  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   std::array<RowMajorMatrix, map_count> maps;  // row-major while accumulating: a block row is contiguous
   for (auto& mat : maps) mat = RowMajorMatrix::Zero(nc, nr);
   std::array<ScratchRow, map_count> rows{ScratchRow(nr), ScratchRow(nr), ScratchRow(nr), ScratchRow(nr),
@@ -302,17 +301,14 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
     slot_row.clear();
   }
   Eigen::MatrixXd a_v = maps[op_v], a_n = maps[op_n];
-  viscous_ = maps[visc];
-  pressure_x_ = maps[press_x];
-  pressure_y_ = maps[press_y];
-  continuity_x_ = maps[cont_x];
-  continuity_y_ = maps[cont_y];
+  viscous_ = std::move(maps[visc]);
+  pressure_x_ = std::move(maps[press_x]);
+  pressure_y_ = std::move(maps[press_y]);
+  continuity_x_ = std::move(maps[cont_x]);
+  continuity_y_ = std::move(maps[cont_y]);
   const Eigen::VectorXd inv_rho = rho_bar.cwiseInverse(), inv_psi = psi_sum.cwiseInverse();
-  viscous_ = inv_rho.asDiagonal() * viscous_;
-  pressure_x_ = inv_rho.asDiagonal() * pressure_x_;
-  pressure_y_ = inv_rho.asDiagonal() * pressure_y_;
-  continuity_x_ = inv_psi.asDiagonal() * continuity_x_;
-  continuity_y_ = inv_psi.asDiagonal() * continuity_y_;
+  for (auto* mat : {&viscous_, &pressure_x_, &pressure_y_}) *mat = inv_rho.asDiagonal() * *mat;  // in place
+  for (auto* mat : {&continuity_x_, &continuity_y_}) *mat = inv_psi.asDiagonal() * *mat;
   body_x_ = body_x_.cwiseProduct(inv_rho);
   body_y_ = body_y_.cwiseProduct(inv_rho);
   a_v = inv_rho.asDiagonal() * a_v;
@@ -438,14 +434,15 @@ bool ForceDensitySolver2D::steady_solve(std::string& issue) {
   }
   Eigen::VectorXd zero = Eigen::VectorXd::Zero(f), x0v, x0n;  // the closure's response to zero data (affine part)
   if (!deconvolve(velocity_, zero, x0v, issue) || !deconvolve(density_, zero, x0n, issue)) return false;
-  const auto free_rows = [&](const Eigen::MatrixXd& full) {
+  // The blocks of M on every node (a product of the full map, no copy of it), then the free rows.
+  const auto free_rows_of = [&](const Eigen::MatrixXd& full) {
     Eigen::MatrixXd out(f, full.cols());
     for (Eigen::Index k = 0; k < f; ++k) out.row(k) = full.row(free_[static_cast<std::size_t>(k)]);
     return out;
   };
-  const Eigen::MatrixXd visc = free_rows(viscous_), prx = free_rows(pressure_x_), pry = free_rows(pressure_y_),
-                        cnx = free_rows(continuity_x_), cny = free_rows(continuity_y_);
-  const Eigen::MatrixXd mvv = visc * xv, mxn = prx * xn, myn = pry * xn, mnx = cnx * xv, mny = cny * xv;
+  const Eigen::MatrixXd mvv = free_rows_of(viscous_ * xv), mxn = free_rows_of(pressure_x_ * xn),
+                        myn = free_rows_of(pressure_y_ * xn), mnx = free_rows_of(continuity_x_ * xv),
+                        mny = free_rows_of(continuity_y_ * xv);
   Eigen::MatrixXd big = Eigen::MatrixXd::Zero(3 * f + 1, 3 * f + 1);
   big.block(0, 0, f, f) = mvv;
   big.block(0, 2 * f, f, f) = mxn;

@@ -141,7 +141,9 @@ class ForceDensitySolver2D {
   std::vector<std::uint8_t> fixed_;
   // Rates from the reconstruction (coarse nodes × reconstruction nodes), divided by ρ̄ for the momentum:
   // viscous (both components), pressure (x and y from δn), continuity (from V_x and V_y).
-  Eigen::MatrixXd viscous_, pressure_x_, pressure_y_, continuity_x_, continuity_y_;
+  // Row-major as assembled (a block row is contiguous there); the products with them are the same either way.
+  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajorMatrix viscous_, pressure_x_, pressure_y_, continuity_x_, continuity_y_;
   Eigen::VectorXd body_x_, body_y_;   // Σ_fluid ψ m g / ρ̄
   Eigen::VectorXd mass_weight_;       // ρ̄ Δ² / (ρ0 L²): ⟨u⟩ = Σ mass_weight v̄ (the cell's momentum)
   Eigen::VectorXd vx_, vy_, n_;

@@ -79,7 +79,7 @@ def figures(rows, out):
     fig.savefig(os.path.join(out, "field.png"), dpi=110)
     plt.close(fig)
 
-    fig, ax = plt.subplots(figsize=(7, 4.5))
+    fig, ax = plt.subplots(figsize=(9, 4.5))
     pts = [r for r in rows if r["params"]["scene"]["n"] == 192 and r.get("status") == "ok"
            and r["params"]["scene"]["radius_over_length"] == 0.2]
     for k, r in enumerate(pts, 1):

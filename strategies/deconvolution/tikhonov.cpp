@@ -419,7 +419,9 @@ class Tikhonov : public DeconvolverBase {
 }  // namespace
 
 ParamSchema tikhonov_schema() {
-  return {string_param("form", "least_squares", "paper: (A + alpha C)x = b (4.7); least_squares: (A'A + alpha C)x = A'b",
+  return {string_param("form", "least_squares",
+                       "paper: (A + alpha C)x = b (4.7); least_squares: min ||Ax - b||^2 + alpha ||Lx||^2 (C = L'L; the "
+                       "normal equations (A'A + alpha C)x = A'b are never formed)",
                        {"paper", "least_squares"}),
           string_param("regularizer", "identity",
                        "C = I, or C = L'L for a first/second difference L; first_difference_zero_ends: L includes the "
@@ -427,7 +429,12 @@ ParamSchema tikhonov_schema() {
                        "viscosity: the minimum-viscous-dissipation prior)",
                        {"identity", "first_difference", "second_difference", "first_difference_zero_ends"}),
           number_param("alpha", 1e-6, "regularization parameter alpha (rule fixed)", 0.0, {}, true),
-          string_param("backend", "auto", "auto, spectral (C = I; SVD/eigen, Kronecker-aware), dense (Eigen), sparse (CHOLMOD)",
+          string_param("backend", "auto",
+                       "spectral: filter factors for every alpha from one decomposition (C = I: SVD/eigen, Kronecker-aware; "
+                       "a difference L, least_squares only: standard form + SVD, the generalized SVD); dense: QR of "
+                       "[A; sqrt(alpha) L] per alpha (paper: Cholesky/LU of A + alpha C); sparse: the same by Eigen's "
+                       "SparseQR (paper: CHOLMOD/SparseLU); auto: spectral unless A is sparse or the paper form has a "
+                       "difference C or a non-symmetric A",
                        {"auto", "spectral", "dense", "sparse"}),
           number_param("alpha_max", 1.0, "largest alpha scanned by the rules, relative to ||A||^2 (||A|| paper form)", 0.0, {}, true),
           number_param("alpha_min", 1e-16, "smallest alpha scanned by the rules, relative likewise", 0.0, {}, true),

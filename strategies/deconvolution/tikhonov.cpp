@@ -10,9 +10,12 @@
 //             Cholesky/LU of A + α C per α.
 //   sparse    least_squares: Eigen's SparseQR (COLAMD) of the stacked [A; √α L] per α; paper: CHOLMOD (symbolic
 //             analysis once) or SparseLU of A + α C.
-// The least-squares solves never square the condition number of A (DESIGN.md §6). A fixed α is factored once, at
-// setup. GCV needs the trace of the influence matrix: Σ f_i (+ dim null(L)) from the filter factors, or
-// ‖R⁻ᵀ Pᵀ Aᵀ‖²_F from the stacked QR (AP = Q_top R), or trace((A + αC)⁻¹ A) from the paper form's factorization.
+//   auto      spectral for a dense or Kronecker A in the least-squares form (and for the paper form with C = I on a
+//             symmetric A), else dense or sparse as A is stored.
+// The least-squares solves never square the condition number of A (DESIGN.md §6); with rule fixed the stacked QR is
+// computed once, at setup (the paper form factors per solve, as before). GCV needs the trace of the influence
+// matrix: Σ f_i (+ dim null(L)) from the filter factors, or ‖R⁻ᵀ Pᵀ Aᵀ‖²_F from the stacked QR ([A; √α L] P = Q R,
+// so A P = Q_top R), or trace((A + αC)⁻¹ A) from the paper form's factorization.
 // Difference operators follow the solution mesh (1D, or the Kronecker sum [I ⊗ L_x; L_y ⊗ I] on a tensor mesh);
 // they are not periodic.
 #include <Eigen/CholmodSupport>

@@ -92,7 +92,7 @@ void take(DeconvolutionResult& r, const ScanPoint& p) {
 }  // namespace
 
 DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& b, ParameterRule rule,
-                                   double noise_level, double safety) {
+                                   double noise_level, double safety, const Seminorm& lcurve_seminorm) {
   DeconvolutionResult r;
   r.stats.rule = to_string(rule);
   int visited = 0;
@@ -144,7 +144,9 @@ DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& 
   long total_matvecs = 0;
   std::string issue;
   d.scan(b, [&](const ScanPoint& p) {
-    pts.push_back(RecordedPoint{p.parameter, p.residual_norm, p.solution_norm, p.gcv});
+    const bool seminorm = rule == ParameterRule::lcurve && lcurve_seminorm;
+    pts.push_back(RecordedPoint{p.parameter, p.residual_norm, seminorm ? lcurve_seminorm(p.solution()) : p.solution_norm,
+                                p.gcv});
     total_matvecs = p.matvecs;
     if (!p.issue.empty()) issue = p.issue;
     return p.issue.empty();

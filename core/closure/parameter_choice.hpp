@@ -4,9 +4,12 @@
 //   fixed        the configured parameter;
 //   discrepancy  the most regularized member with ‖b − A x‖ <= τ δ (Morozov; τ ≈ 1.01, δ = ‖noise‖₂);
 //   gcv          the minimizer of the generalized cross-validation function ‖r‖² / (m − trace(influence))²;
-//   lcurve       the corner of the log‖r‖–log‖x‖ curve (the sharpest turn of its convex hull facing the origin).
+//   lcurve       the corner of the log‖r‖–log‖x‖ curve (the sharpest turn of its convex hull facing the origin);
+//                for a method that penalizes a seminorm ‖Lx‖ (general-form Tikhonov) the curve is log‖r‖–log‖Lx‖
+//                (Hansen's L-curve of the functional the method minimizes).
 // The chooser consumes the ScanPoints a Deconvolver::scan visits (most regularized first).
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -38,9 +41,11 @@ struct RecordedPoint {
 // first member that satisfies it (status converged) or ends at the last one (status no_convergence).
 // For gcv/lcurve the whole family is scanned, then scanned again up to the chosen member to get its x.
 // A scan point reporting an issue ends the walk there with status numerical_issue. Fills x, status, stats.{residual_norm, solution_norm,
-// chosen_parameter, iterations (points visited), rule, message}.
+// chosen_parameter, iterations (points visited), rule, message}. `lcurve_seminorm`, when given, is the L-curve's
+// ordinate x -> ‖Lx‖ in place of ‖x‖ (the result's solution_norm stays ‖x‖).
+using Seminorm = std::function<double(const Eigen::VectorXd&)>;
 DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& b, ParameterRule rule,
-                                   double noise_level, double safety);
+                                   double noise_level, double safety, const Seminorm& lcurve_seminorm = {});
 
 // Index of the L-curve corner among points, most regularized first (see the .cpp); -1 if there are none.
 int lcurve_corner(const std::vector<RecordedPoint>& points);

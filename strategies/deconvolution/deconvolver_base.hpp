@@ -62,7 +62,8 @@ class DeconvolverBase : public Deconvolver {
       r = solve_fixed(m == 0 ? b : times_power_of_two(b, -m));
       unscale(r, m);
     } else {
-      r = choose_by_rule(*this, b, rule_.rule, noise_level, rule_.safety);  // through scan(): already unscaled
+      r = choose_by_rule(*this, b, rule_.rule, noise_level, rule_.safety,
+                         lcurve_seminorm());  // through scan(): already unscaled
     }
     r.stats.rule = to_string(rule_.rule);
     r.stats.parameter_name = parameter_name_;
@@ -113,6 +114,8 @@ class DeconvolverBase : public Deconvolver {
   int scale_exponent() const { return scale_exponent_; }
   virtual double unscale_parameter(double p) const { return p; }
   const RuleConfig& rule() const { return rule_; }
+  // The L-curve's ordinate when the method penalizes a seminorm ‖Lx‖ rather than ‖x‖ (empty: ‖x‖).
+  virtual Seminorm lcurve_seminorm() const { return {}; }
   // Why a solution may fit no better than x = 0 with this method (appended to that message).
   virtual std::string no_fit_hint() const { return ""; }
   // Fills the norms of a fixed-parameter result from its x (one more product with A).

@@ -52,16 +52,13 @@ SpMat zero_end_difference(const ForwardOperator& a) {
 
 }  // namespace
 
-// C = LᵀL (C = I for the identity; order 3: the zero-end, weighted first difference above).
-SpMat regularizer_matrix(const ForwardOperator& a, int order) {
+// L itself (L = I for the identity; order 3: the zero-end, weighted first difference above).
+SpMat regularizer_operator(const ForwardOperator& a, int order) {
   const int n = static_cast<int>(a.cols());
   SpMat identity(n, n);
   identity.setIdentity();
   if (order == 0) return identity;
-  if (order == 3) {
-    const SpMat l = zero_end_difference(a);
-    return SpMat(l.transpose() * l);
-  }
+  if (order == 3) return zero_end_difference(a);
   int nx = n, ny = 1;
   if (a.dimension == 2 && a.solution_mesh) {
     nx = a.solution_mesh->nx();
@@ -84,6 +81,13 @@ SpMat regularizer_matrix(const ForwardOperator& a, int order) {
       for (SpMat::InnerIterator it(ly, k); it; ++it) t.emplace_back(lx.rows() + it.row(), it.col(), it.value());
     l.setFromTriplets(t.begin(), t.end());
   }
+  return l;
+}
+
+// C = LᵀL (C = I for the identity).
+SpMat regularizer_matrix(const ForwardOperator& a, int order) {
+  if (order == 0) return regularizer_operator(a, 0);
+  const SpMat l = regularizer_operator(a, order);
   return SpMat(l.transpose() * l);
 }
 

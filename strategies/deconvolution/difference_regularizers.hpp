@@ -11,5 +11,8 @@ namespace closurelab {
 
 // order 0: C = I; 1, 2: first or second difference; 3: the zero-end, weighted first difference.
 Eigen::SparseMatrix<double> regularizer_matrix(const ForwardOperator& a, int order);
+// L itself (p x n; L = I for order 0), so that C = LᵀL: what the stacked QR and the standard-form
+// transformation of Tikhonov's least-squares form use instead of C (they do not square L's condition number).
+Eigen::SparseMatrix<double> regularizer_operator(const ForwardOperator& a, int order);
 
 }  // namespace closurelab

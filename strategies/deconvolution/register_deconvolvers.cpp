@@ -11,7 +11,7 @@ void register_deconvolvers(Registry& r) {
   r.deconvolvers.add({"landweber_relaxed", "relaxed Landweber x_{k+1} = x_k + omega A'(b - A x_k), any A",
                       landweber_relaxed_schema()},
                      make_landweber_relaxed);
-  r.deconvolvers.add({"tikhonov", "Tikhonov (4.7): (A + alpha C)x = b or (A'A + alpha C)x = A'b, C = I or L'L",
+  r.deconvolvers.add({"tikhonov", "Tikhonov (4.7): (A + alpha C)x = b or min ||Ax - b||^2 + alpha ||Lx||^2, C = I or L'L",
                       tikhonov_schema()},
                      make_tikhonov);
   r.deconvolvers.add({"tsvd", "truncated SVD by index or threshold; Kronecker SVD on tensor meshes", tsvd_schema()},

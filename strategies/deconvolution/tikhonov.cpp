@@ -1,23 +1,41 @@
 // Tikhonov regularization (4.7) in two forms, with C = I or C = LᵀL for a first/second difference L:
 //   paper          (A + α C) x = b                 (4.7) as written (square A);
-//   least_squares  (AᵀA + α C) x = Aᵀ b            the normal equations of min ‖Ax − b‖² + α‖Lx‖².
-// Backends: spectral (C = I: SVD, or the symmetric eigendecomposition for the paper form; Kronecker operators
-// decompose their factors only), dense (Eigen Cholesky/LU per α) and sparse (CHOLMOD: symbolic analysis once,
-// numeric factorization per α). Difference operators follow the solution mesh (1D, or the Kronecker sum
-// [I ⊗ L_x; L_y ⊗ I] on a tensor mesh); they are not periodic.
+//   least_squares  min ‖Ax − b‖² + α‖Lx‖²          (whose normal equations are (AᵀA + α C) x = Aᵀ b; never formed).
+// Backends:
+//   spectral  filter factors for every α from one decomposition: C = I by the SVD (or, for the paper form, the
+//             symmetric eigendecomposition; Kronecker operators decompose their factors only); a difference L
+//             (least_squares) by the transformation to standard form and one SVD (standard_form.hpp: the
+//             generalized SVD's filter factors). The paper form with a difference C has no filter-factor form.
+//   dense     least_squares: Eigen's column-pivoting Householder QR of the stacked [A; √α L] per α; paper: Eigen
+//             Cholesky/LU of A + α C per α.
+//   sparse    least_squares: Eigen's SparseQR (COLAMD) of the stacked [A; √α L] per α; paper: CHOLMOD (symbolic
+//             analysis once) or SparseLU of A + α C.
+//   auto      spectral for a dense or Kronecker A in the least-squares form (and for the paper form with C = I on a
+//             symmetric A), else dense or sparse as A is stored.
+// The least-squares solves never square the condition number of A (DESIGN.md §6); with rule fixed the stacked QR is
+// computed once, at setup (the paper form factors per solve, as before). GCV needs the trace of the influence
+// matrix: Σ f_i (+ dim null(L)) from the filter factors, or ‖R⁻ᵀ Pᵀ Aᵀ‖²_F from the stacked QR ([A; √α L] P = Q R,
+// so A P = Q_top R), or trace((A + αC)⁻¹ A) from the paper form's factorization.
+// Difference operators follow the solution mesh (1D, or the Kronecker sum [I ⊗ L_x; L_y ⊗ I] on a tensor mesh);
+// they are not periodic.
 #include <Eigen/CholmodSupport>
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <Eigen/SparseLU>
+#include <Eigen/SparseQR>
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <string>
+#include <vector>
 #include <unsupported/Eigen/KroneckerProduct>
 
 #include "core/closure/spectral_basis.hpp"
 #include "strategies/deconvolution/deconvolver_base.hpp"
 #include "strategies/deconvolution/deconvolvers.hpp"
 #include "strategies/deconvolution/difference_regularizers.hpp"
+#include "strategies/deconvolution/standard_form.hpp"
 
 namespace closurelab {
 namespace {
@@ -35,6 +53,69 @@ class Cholmod : public Eigen::CholmodDecomposition<SpMat> {
 // A factorization whose reciprocal condition number is below the unit roundoff solves with no correct digit.
 constexpr double singular_rcond = std::numeric_limits<double>::epsilon();
 
+// The least-squares form at one α as the stacked problem [A; √α L] x ≈ [b; 0] by QR: the stacked matrix is
+// A P = Q R (P the column permutation: pivoting in the dense QR, COLAMD in the sparse one), so RᵀR = AᵀA + α LᵀL
+// without forming it and R's condition number is the stacked matrix's, not its square.
+class StackedQr {
+ public:
+  StackedQr(const Eigen::MatrixXd& a, const Eigen::MatrixXd& l, double alpha) : m_(a.rows()), n_(a.cols()) {
+    Eigen::MatrixXd s(a.rows() + l.rows(), a.cols());
+    s << a, std::sqrt(alpha) * l;
+    dense_ = std::make_unique<Eigen::ColPivHouseholderQR<Eigen::MatrixXd>>(s);
+  }
+  StackedQr(const SpMat& a, const SpMat& l, double alpha) : m_(a.rows()), n_(a.cols()) {
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(static_cast<size_t>(a.nonZeros() + l.nonZeros()));
+    for (int k = 0; k < a.outerSize(); ++k)
+      for (SpMat::InnerIterator it(a, k); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+    const double root = std::sqrt(alpha);
+    for (int k = 0; k < l.outerSize(); ++k)
+      for (SpMat::InnerIterator it(l, k); it; ++it) t.emplace_back(a.rows() + it.row(), it.col(), root * it.value());
+    SpMat s(a.rows() + l.rows(), a.cols());
+    s.setFromTriplets(t.begin(), t.end());
+    s.makeCompressed();
+    sparse_ = std::make_unique<Eigen::SparseQR<SpMat, Eigen::COLAMDOrdering<int>>>(s);
+  }
+  // Empty when the factorization failed or R is singular (a zero pivot).
+  std::string failure() const {
+    if (sparse_ && sparse_->info() != Eigen::Success) return "sparse QR failed: " + sparse_->lastErrorMessage();
+    if (!(diagonal().minCoeff() > 0)) return std::string(dense_ ? "Householder QR" : "sparse QR") + ": R has a zero pivot";
+    return "";
+  }
+  // min |R_ii| / max |R_ii|: with column pivoting (dense) an estimate of 1/κ; with COLAMD (sparse) a cruder one,
+  // like CHOLMOD's min/max diag(L), but of the stacked matrix (unsquared).
+  double rcond() const {
+    const Eigen::VectorXd d = diagonal();
+    return d.size() == 0 ? 0.0 : d.minCoeff() / d.maxCoeff();
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(dense_ ? dense_->rows() : sparse_->rows());
+    rhs.head(b.size()) = b;
+    return dense_ ? Eigen::VectorXd(dense_->solve(rhs)) : Eigen::VectorXd(sparse_->solve(rhs));
+  }
+  // trace(A (AᵀA + α LᵀL)⁻¹ Aᵀ) = ‖R⁻ᵀ (A P)ᵀ‖²_F.
+  double influence_trace(const Eigen::MatrixXd& a) const {
+    Eigen::MatrixXd apt = (a * dense_->colsPermutation()).transpose();
+    dense_->matrixR().topLeftCorner(n_, n_).triangularView<Eigen::Upper>().transpose().solveInPlace(apt);
+    return apt.squaredNorm();
+  }
+  double influence_trace(const SpMat& a) const {
+    Eigen::MatrixXd apt = Eigen::MatrixXd(SpMat(a * sparse_->colsPermutation()).transpose());
+    const SpMat rt = SpMat(sparse_->matrixR().topLeftCorner(n_, n_)).transpose();
+    rt.triangularView<Eigen::Lower>().solveInPlace(apt);
+    return apt.squaredNorm();
+  }
+
+ private:
+  Eigen::VectorXd diagonal() const {
+    if (dense_) return dense_->matrixR().diagonal().cwiseAbs();
+    return SpMat(sparse_->matrixR().topLeftCorner(n_, n_)).diagonal().cwiseAbs();
+  }
+  Eigen::Index m_, n_;
+  std::unique_ptr<Eigen::ColPivHouseholderQR<Eigen::MatrixXd>> dense_;
+  std::unique_ptr<Eigen::SparseQR<SpMat, Eigen::COLAMDOrdering<int>>> sparse_;
+};
+
 class Tikhonov : public DeconvolverBase {
  public:
   enum class Backend { automatic, spectral, dense, sparse };
@@ -51,17 +132,18 @@ class Tikhonov : public DeconvolverBase {
     if (alpha_min_ >= alpha_max_) throw ConfigError("/alpha_min", "alpha_min must be below alpha_max");
     symmetric_ = a.is_symmetric(1e-10);
     backend_ = requested_;
+    fixed_qr_.reset();
+    std_form_.reset();
     if (backend_ == Backend::automatic) {
-      if (order_ == 0 && a.storage() != OperatorStorage::sparse && (!paper_ || symmetric_))
+      if (a.storage() != OperatorStorage::sparse && (paper_ ? order_ == 0 && symmetric_ : true))
         backend_ = Backend::spectral;
       else
         backend_ = a.storage() == OperatorStorage::sparse ? Backend::sparse : Backend::dense;
     }
-    if (backend_ == Backend::spectral && order_ != 0)
-      throw ConfigError("/backend", "the spectral backend needs regularizer identity");
-    if (backend_ != Backend::spectral && rule().rule == ParameterRule::gcv)
-      throw ConfigError("/rule", "gcv needs the spectral backend (regularizer identity)");
-    if (backend_ == Backend::spectral) {
+    if (backend_ == Backend::spectral && paper_ && order_ != 0)
+      throw ConfigError("/backend", "the spectral backend's paper form needs regularizer identity ((A + alpha L'L) x = b "
+                                    "has no filter-factor form); use backend dense or sparse, or form least_squares");
+    if (backend_ == Backend::spectral && order_ == 0) {
       if (paper_ && !symmetric_)
         throw ConfigError("/backend", "the spectral paper form needs a symmetric A (use backend dense)");
       basis_ = SpectralBasis(a, paper_ ? SpectralBasis::Kind::symmetric_eigen : SpectralBasis::Kind::svd);
@@ -71,15 +153,28 @@ class Tikhonov : public DeconvolverBase {
     }
     const double norm = a.norm2_estimate();
     scale_ = paper_ ? norm : norm * norm;
+    l_ = regularizer_operator(a, order_);
+    if (backend_ == Backend::spectral) {  // least_squares with a difference L: the standard form
+      std_form_ = std::make_unique<StandardForm>(a, l_);
+      return;
+    }
+    if (!paper_) {
+      if (backend_ == Backend::dense) {
+        a_dense_ = a.to_dense();
+        l_dense_ = Eigen::MatrixXd(l_);
+      } else {
+        a_sparse_ = a.to_sparse();
+      }
+      if (rule().rule == ParameterRule::fixed) fixed_qr_ = stacked_qr(fixed_alpha());
+      return;
+    }
     c_ = regularizer_matrix(a, order_);
     if (backend_ == Backend::dense) {
-      const Eigen::MatrixXd ad = a.to_dense();
-      g_dense_ = paper_ ? ad : Eigen::MatrixXd(ad.transpose() * ad);
+      g_dense_ = a.to_dense();
       c_dense_ = Eigen::MatrixXd(c_);
     } else {
-      const SpMat as = a.to_sparse();
-      g_sparse_ = paper_ ? as : SpMat(as.transpose() * as);
-      if (!paper_ || symmetric_) {
+      g_sparse_ = a.to_sparse();
+      if (symmetric_) {
         cholmod_ = std::make_unique<Cholmod>();
         cholmod_->analyzePattern(SpMat(g_sparse_ + c_));
       }
@@ -88,11 +183,15 @@ class Tikhonov : public DeconvolverBase {
 
   DeconvolutionResult solve_fixed(const Eigen::VectorXd& b) const override {
     DeconvolutionResult r;
-    const double alpha = std::ldexp(alpha_, -(paper_ ? 1 : 2) * scale_exponent());  // alpha for op() = 2^-k A
+    const double alpha = fixed_alpha();
     std::string issue;
     if (backend_ == Backend::spectral) {
-      const Eigen::VectorXd beta = basis_.coefficients(b);
-      r.x = spectral_solution(beta, alpha, issue);
+      if (std_form_) {
+        r.x = std_form_->solution(std_form_->data(b), alpha);
+      } else {
+        const Eigen::VectorXd beta = basis_.coefficients(b);
+        r.x = spectral_solution(beta, alpha, issue);
+      }
       r.cost.matvecs = 2;
     } else {
       r.x = factored_solution(b, alpha, issue, true);
@@ -108,6 +207,11 @@ class Tikhonov : public DeconvolverBase {
     finish_fixed(r, b, alpha);
     return r;
   }
+  // Hansen's L-curve of general-form Tikhonov plots ‖Lx‖, the penalized seminorm.
+  Seminorm lcurve_seminorm() const override {
+    if (order_ == 0) return {};
+    return [this](const Eigen::VectorXd& x) { return robust_norm(l_ * x); };
+  }
   double unscale_parameter(double alpha) const override {
     return std::ldexp(alpha, (paper_ ? 1 : 2) * scale_exponent());
   }
@@ -120,9 +224,13 @@ class Tikhonov : public DeconvolverBase {
   void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const override {
     const auto grid = log_grid_descending(alpha_max_ * scale_, alpha_min_ * scale_, alpha_count_);
     const double m = static_cast<double>(op().rows());
+    const bool want_gcv = rule().rule == ParameterRule::gcv;
     Eigen::VectorXd beta;
     double b_perp2 = 0.0;
-    if (backend_ == Backend::spectral) {
+    StandardForm::Data sf;
+    if (std_form_) {
+      sf = std_form_->data(b);
+    } else if (backend_ == Backend::spectral) {
       beta = basis_.coefficients(b);
       // b_⊥ (the part of b outside range(U)) is nonzero only when A has more rows than singular values.
       if (basis_.data_size() > beta.size()) b_perp2 = std::max(b.squaredNorm() - beta.squaredNorm(), 0.0);
@@ -134,7 +242,22 @@ class Tikhonov : public DeconvolverBase {
       p.parameter = alpha;
       p.last = g + 1 == grid.size();
       Eigen::VectorXd x;
-      if (backend_ == Backend::spectral) {
+      if (std_form_) {
+        // The generalized SVD's filter factors f_i = σ̄_i φ_i; residual Σ((1 − f_i) β̄_i)² + ‖b̄_⊥‖²; GCV
+        // ‖r‖²/(m − dim null(L) − Σ f_i)².
+        double r2 = sf.outside2, trace = static_cast<double>(std_form_->null_dimension());
+        for (Eigen::Index i = 0; i < sf.beta.size(); ++i) {
+          const double f = std_form_->sigma()(i) * std_form_->filter(i, alpha);
+          r2 += (1.0 - f) * (1.0 - f) * sf.beta(i) * sf.beta(i);
+          trace += f;
+        }
+        x = std_form_->solution(sf, alpha);
+        p.residual_norm = std::sqrt(r2);
+        p.solution_norm = robust_norm(x);
+        p.gcv = r2 / ((m - trace) * (m - trace));
+        p.matvecs = matvecs + 1;
+        p.solution = [&x] { return x; };
+      } else if (backend_ == Backend::spectral) {
         // Filter factors f_i = σ_i φ_i; residual Σ((1 − f_i) β_i)² + ‖b_⊥‖²; GCV ‖r‖²/(m − Σ f_i)².
         double r2 = b_perp2, x2 = 0.0, trace = 0.0;
         for (Eigen::Index i = 0; i < beta.size(); ++i) {
@@ -154,10 +277,13 @@ class Tikhonov : public DeconvolverBase {
           return spectral_solution(beta, alpha, ignored);
         };
       } else {
-        x = factored_solution(b, alpha, p.issue);
+        double trace = -1.0;
+        x = factored_solution(b, alpha, p.issue, false, want_gcv ? &trace : nullptr);
         matvecs += (paper_ ? 0 : 1) + 1;
-        p.residual_norm = robust_norm(b - op().apply(x));
+        const Eigen::VectorXd residual = b - op().apply(x);
+        p.residual_norm = robust_norm(residual);
         p.solution_norm = robust_norm(x);
+        if (trace >= 0) p.gcv = residual.squaredNorm() / ((m - trace) * (m - trace));
         p.matvecs = matvecs;
         p.solution = [&x] { return x; };
       }
@@ -167,6 +293,7 @@ class Tikhonov : public DeconvolverBase {
   }
 
  private:
+  double fixed_alpha() const { return std::ldexp(alpha_, -(paper_ ? 1 : 2) * scale_exponent()); }  // for op() = 2^-k A
   // x-coefficient φ(σ); singular values below the numerical rank tolerance are treated as zero.
   double filter(double s, double alpha) const {
     if (std::abs(s) <= basis_.rank_tolerance()) return 0.0;
@@ -187,21 +314,57 @@ class Tikhonov : public DeconvolverBase {
     for (Eigen::Index i = 0; i < beta.size(); ++i) c(i) = filter(basis_.sigma()(i), alpha) * beta(i);
     return basis_.synthesize(c);
   }
+  std::unique_ptr<StackedQr> stacked_qr(double alpha) const {
+    return backend_ == Backend::dense ? std::make_unique<StackedQr>(a_dense_, l_dense_, alpha)
+                                      : std::make_unique<StackedQr>(a_sparse_, l_, alpha);
+  }
+  // The least-squares form by the stacked QR (the fixed α's factorization from setup when it is that α).
+  // `check_conditioning` (the fixed-parameter solve): a reciprocal condition estimate of the stacked matrix below
+  // the unit roundoff is reported as singular to working precision.
+  Eigen::VectorXd stacked_solution(const Eigen::VectorXd& b, double alpha, std::string& issue, bool check_conditioning,
+                                   double* trace) const {
+    std::unique_ptr<StackedQr> own;
+    const StackedQr* qr = fixed_qr_.get();
+    if (!qr || alpha != fixed_alpha()) {
+      own = stacked_qr(alpha);
+      qr = own.get();
+    }
+    const std::string failure = qr->failure();
+    if (!failure.empty()) {
+      issue = "tikhonov: the stacked least-squares matrix [A; sqrt(alpha) L] is singular at alpha = " + fmt(alpha) +
+              " (" + failure + "); increase alpha";
+      return Eigen::VectorXd::Zero(op().cols());
+    }
+    if (check_conditioning) {
+      const double rc = qr->rcond();
+      if (!(rc >= singular_rcond))
+        issue = "tikhonov: the stacked least-squares matrix [A; sqrt(alpha) L] is singular to working precision at "
+                "alpha = " + fmt(alpha) + ": reciprocal condition estimate " + fmt(rc) + " (min/max |diag R| of its " +
+                (backend_ == Backend::dense ? "pivoted Householder QR" : "sparse QR") + ") is below the unit roundoff; increase alpha";
+    }
+    if (trace) *trace = backend_ == Backend::dense ? qr->influence_trace(a_dense_) : qr->influence_trace(a_sparse_);
+    return qr->solve(b);
+  }
   // `check_conditioning` (the fixed-parameter solve): a Cholesky factor whose reciprocal condition estimate is
   // below the unit roundoff is reported as not positive definite to working precision (the scan's smallest
-  // alphas are bounded by alpha_min and keep their behaviour).
+  // alphas are bounded by alpha_min and keep their behaviour). `trace`, when given, receives the trace of the
+  // influence matrix (for GCV).
   Eigen::VectorXd factored_solution(const Eigen::VectorXd& b, double alpha, std::string& issue,
-                                    bool check_conditioning = false) const {
-    const Eigen::VectorXd rhs = paper_ ? b : op().apply_transpose(b);
-    const std::string not_pd = "tikhonov: the matrix " + std::string(paper_ ? "A + alpha C" : "A'A + alpha C") +
-                               " is not positive definite at alpha = " + fmt(alpha);
+                                    bool check_conditioning = false, double* trace = nullptr) const {
+    if (!paper_) return stacked_solution(b, alpha, issue, check_conditioning, trace);
+    const std::string not_pd = "tikhonov: the matrix A + alpha C is not positive definite at alpha = " + fmt(alpha);
     auto singular = [&](double rc, const char* how) {
       issue = not_pd + " to working precision: reciprocal condition estimate " + fmt(rc) + " (" + how +
-              ") is below the unit roundoff; increase alpha" + (paper_ ? "" : " (the normal equations square the condition number)");
+              ") is below the unit roundoff; increase alpha";
     };
+    // The paper form's influence matrix A (A + αC)⁻¹ has the trace of (A + αC)⁻¹ A.
     if (backend_ == Backend::dense) {
       const Eigen::MatrixXd k = g_dense_ + alpha * c_dense_;
-      if (paper_ && !symmetric_) return k.partialPivLu().solve(rhs);
+      if (!symmetric_) {
+        const Eigen::PartialPivLU<Eigen::MatrixXd> lu = k.partialPivLu();
+        if (trace) *trace = lu.solve(g_dense_).trace();
+        return lu.solve(b);
+      }
       Eigen::LLT<Eigen::MatrixXd> llt(k);
       if (llt.info() != Eigen::Success) {
         issue = not_pd;
@@ -211,16 +374,18 @@ class Tikhonov : public DeconvolverBase {
         const double rc = llt.rcond();
         if (!(rc >= singular_rcond)) singular(rc, "Eigen LLT");
       }
-      return llt.solve(rhs);
+      if (trace) *trace = llt.solve(g_dense_).trace();
+      return llt.solve(b);
     }
     const SpMat k = g_sparse_ + alpha * c_;
-    if (paper_ && !symmetric_) {
+    if (!symmetric_) {
       Eigen::SparseLU<SpMat> lu(k);
       if (lu.info() != Eigen::Success) {
         issue = "tikhonov: sparse LU of A + alpha C failed at alpha = " + std::to_string(alpha);
         return Eigen::VectorXd::Zero(op().cols());
       }
-      return lu.solve(rhs);
+      if (trace) *trace = Eigen::MatrixXd(lu.solve(Eigen::MatrixXd(g_sparse_))).trace();
+      return lu.solve(b);
     }
     cholmod_->factorize(k);
     if (cholmod_->info() != Eigen::Success) {
@@ -231,7 +396,8 @@ class Tikhonov : public DeconvolverBase {
       const double rc = cholmod_->rcond();
       if (!(rc >= singular_rcond)) singular(rc, "CHOLMOD, (min/max diag L)^2");
     }
-    return cholmod_->solve(rhs);
+    if (trace) *trace = Eigen::MatrixXd(cholmod_->solve(Eigen::MatrixXd(g_sparse_))).trace();
+    return cholmod_->solve(b);
   }
 
   bool paper_;
@@ -242,16 +408,23 @@ class Tikhonov : public DeconvolverBase {
   int alpha_count_;
   bool symmetric_ = false;
   double scale_ = 1.0;
-  SpectralBasis basis_;
-  SpMat c_, g_sparse_;
+  SpectralBasis basis_;                     // spectral, C = I
+  std::unique_ptr<StandardForm> std_form_;  // spectral, least_squares with a difference L
+  SpMat l_;                                 // L (C = L'L) unless spectral with C = I
+  SpMat a_sparse_;                          // sparse least_squares: A for the stacked QR
+  Eigen::MatrixXd a_dense_, l_dense_;
+  std::unique_ptr<StackedQr> fixed_qr_;     // the fixed α's factorization (rule fixed)
+  SpMat c_, g_sparse_;                      // paper form: C and A
   Eigen::MatrixXd g_dense_, c_dense_;
-  std::unique_ptr<Cholmod> cholmod_;  // factorize() mutates; see note in solve
+  std::unique_ptr<Cholmod> cholmod_;        // factorize() mutates; see note in solve
 };
 
 }  // namespace
 
 ParamSchema tikhonov_schema() {
-  return {string_param("form", "least_squares", "paper: (A + alpha C)x = b (4.7); least_squares: (A'A + alpha C)x = A'b",
+  return {string_param("form", "least_squares",
+                       "paper: (A + alpha C)x = b (4.7); least_squares: min ||Ax - b||^2 + alpha ||Lx||^2 (C = L'L; the "
+                       "normal equations (A'A + alpha C)x = A'b are never formed)",
                        {"paper", "least_squares"}),
           string_param("regularizer", "identity",
                        "C = I, or C = L'L for a first/second difference L; first_difference_zero_ends: L includes the "
@@ -259,7 +432,12 @@ ParamSchema tikhonov_schema() {
                        "viscosity: the minimum-viscous-dissipation prior)",
                        {"identity", "first_difference", "second_difference", "first_difference_zero_ends"}),
           number_param("alpha", 1e-6, "regularization parameter alpha (rule fixed)", 0.0, {}, true),
-          string_param("backend", "auto", "auto, spectral (C = I; SVD/eigen, Kronecker-aware), dense (Eigen), sparse (CHOLMOD)",
+          string_param("backend", "auto",
+                       "spectral: filter factors for every alpha from one decomposition (C = I: SVD/eigen, Kronecker-aware; "
+                       "a difference L, least_squares only: standard form + SVD, the generalized SVD); dense: QR of "
+                       "[A; sqrt(alpha) L] per alpha (paper: Cholesky/LU of A + alpha C); sparse: the same by Eigen's "
+                       "SparseQR (paper: CHOLMOD/SparseLU); auto: spectral unless A is sparse or the paper form has a "
+                       "difference C or a non-symmetric A",
                        {"auto", "spectral", "dense", "sparse"}),
           number_param("alpha_max", 1.0, "largest alpha scanned by the rules, relative to ||A||^2 (||A|| paper form)", 0.0, {}, true),
           number_param("alpha_min", 1e-16, "smallest alpha scanned by the rules, relative likewise", 0.0, {}, true),

@@ -88,10 +88,25 @@ TEST(DeconvBadInput, MethodsThatNeedASquareOperatorSaySo) {
   EXPECT_TRUE(r.x.allFinite());
 }
 
-TEST(DeconvBadInput, GcvNeedsASpectralBackend) {
+// GCV works with every regularizer and backend now (issue 26); what remains refused: the paper form's
+// (A + alpha L'L) x = b has no filter factors, and a regularizer whose null space A annihilates leaves the
+// minimizer of ||Ax - b||^2 + alpha ||Lx||^2 not unique.
+TEST(DeconvBadInput, TikhonovRefusesTheSpectralPaperFormWithADifferenceAndIntersectingNullSpaces) {
   const ForwardOperator a = small_operator();
+  auto p = decon().create(
+      json{{"name", "tikhonov"}, {"form", "paper"}, {"backend", "spectral"}, {"regularizer", "first_difference"}}, "/m");
+  EXPECT_NE(config_error([&] { p->setup(a); }).find("/backend"), std::string::npos);
+  // A that sums to zero on each pair of neighbours maps the constants (null space of the first difference) to 0.
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(10, 20);
+  for (int i = 0; i < 10; ++i) {
+    m(i, 2 * i) = 1.0;
+    m(i, 2 * i + 1) = -1.0;
+  }
+  const ForwardOperator z = ForwardOperator::from_dense(m);
   auto d = decon().create(json{{"name", "tikhonov"}, {"rule", "gcv"}, {"regularizer", "first_difference"}}, "/m");
-  EXPECT_NE(config_error([&] { d->setup(a); }).find("/rule"), std::string::npos);
+  const std::string e = config_error([&] { d->setup(z); });
+  EXPECT_NE(e.find("/regularizer"), std::string::npos) << e;
+  EXPECT_NE(e.find("not unique"), std::string::npos) << e;
 }
 
 TEST(DeconvBadInput, RelaxationTooLargeIsRejected) {

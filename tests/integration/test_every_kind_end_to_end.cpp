@@ -70,6 +70,14 @@ const std::map<std::string, TinyCell>& tiny_cells() {
          "/cost/steps", "/cost/speed_up", "/cost/bond_weights", "/cost/reduced_timing/median_seconds",
          "/cost/direct_sph_timing/engine_version", "/fields/direct_average/", "/direct_sph/",
          "/reduced_model/"}}},
+      {"reduced_model_2d_force_density",  // the cylinder lattice at n = 32, its direct SPH to a short target time
+       {R"({"scene": {"name": "cylinder-lattice", "n": 32, "eta_over_l": 0.125},
+            "reference": {"direct_sph": true, "solver": {"mode": "target_time", "target_time": 0.005}}})",
+        {"/errors/vs_averaged_direct_sph/all_nodes/max_rel", "/errors/vs_averaged_direct_sph/fluid_nodes/max_rel",
+         "/errors/vs_averaged_direct_sph/peak_relative_difference", "/errors/permeability/reduced_vs_direct_sph",
+         "/errors/permeability/reduced_vs_reference", "/cost/speed_up", "/cost/free_nodes",
+         "/cost/reduced_timing/median_seconds", "/fields/direct_average/", "/fields/reduced/", "/direct_sph/",
+         "/reduced_model/"}}},
       {"snapshot_closure",  // the file is written by write_inputs() (its path set in the test): the channel's lattice at the analytic flow
        {R"({"scene": {"name": "poiseuille-uniform", "n_y": 32}, "snapshot": {"file": "snapshot.csv"},
             "closure": {"deconvolver": {"name": "landweber", "order": 1}}})",

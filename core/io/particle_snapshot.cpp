@@ -68,7 +68,9 @@ ParticleSnapshot read_particle_csv(const std::string& file) {
     const std::vector<std::string> cells = split_csv(line);
     const std::string where = file + ":" + std::to_string(line_no);
     if (col.empty()) {  // the header
-      for (std::size_t c = 0; c < cells.size(); ++c) col[cells[c]] = c;
+      for (std::size_t c = 0; c < cells.size(); ++c)
+        if (!col.emplace(cells[c], c).second)  // which of two 'vx' columns is the velocity? neither is assumed
+          throw ConfigError("", where + ": the header names column '" + cells[c] + "' twice");
       for (const char* need : {"x", "y", "vx", "vy", "mass", "phase"})
         if (!col.count(need))
           throw ConfigError("", where + ": the header has no column '" + need + "' (needed: x,y,vx,vy,mass,phase)");

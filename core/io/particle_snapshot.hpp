@@ -20,11 +20,12 @@ struct ParticleSnapshot {
   bool has_fixed = false;
 };
 
-// A CSV file: a header naming at least x, y, vx, vy, mass and phase (any order; other columns ignored; an
-// optional `fixed` column of 0/1 is read), then one particle per line. Lines starting with '#' are skipped.
+// A CSV file: a header naming at least x, y, vx, vy, mass and phase (any order, each once; other columns ignored;
+// an optional `fixed` column of 0/1 is read), then one particle per line. Lines starting with '#' are skipped.
 ParticleSnapshot read_particle_csv(const std::string& file);
 
-// The snapshot at `step` of a file (H5Part: step index, -1 the last; CSV: a single step, 0 or -1).
+// The snapshot at `step` of a file (H5Part: the group number N of Step#N, -1 the last; PySPH output and CSV: a single
+// step, 0 or -1).
 ParticleSnapshot read_particle_snapshot(const std::string& file, int step = -1);
 
 // Checks shared by the readers: equal lengths, finite values, positive masses, phases >= 0. `what` names

@@ -31,7 +31,7 @@ namespace closurelab {
 namespace {
 
 ParamSchema snapshot_schema() {
-  return {string_param("file", "", "particle file: .h5part/.h5/.hdf5 (H5Part layout) or .csv (x,y,vx,vy,mass,phase); "
+  return {string_param("file", "", "particle file: .h5part/.h5/.hdf5 (H5Part layout or PySPH output) or .csv (x,y,vx,vy,mass,phase); "
                                    "a relative path is taken from the working folder"),
           integer_param("step", -1,
                         "H5Part step: the number N of the group Step#N (-1: the last); with step_by index, its place "

@@ -111,6 +111,7 @@ TEST(ParticleCsv, ReadsAnyColumnOrderAndRefusesBadLines) {
       {"x,y,vx,vy,mass,phase\n0,0,0,0,-1,0\n", "mass"},
       {"x,y,vx,vy,mass,phase\n0,0,nan,0,1,0\n", "non-finite"},
       {"x,y,vx,vy,mass,phase\n0,0,0,0,1,0.5\n", "phase"},
+      {"x,y,vx,vy,mass,phase,vx\n0,0,0,0,1,0,1\n", "column 'vx' twice"},
       {"", "empty"}};
   for (const auto& [text, fragment] : bad) {
     std::ofstream(dir / "bad.csv") << text;

@@ -8,8 +8,9 @@
 
 namespace closurelab {
 
-// With time_integration backward_euler in the resolved solver section, a resolved deconvolver with a parameter
-// rule, or cg/cgls, is a ConfigError at `path`/solver/time_integration naming the deconvolver.
+// With time_integration backward_euler in the resolved solver section, cg/cgls is a ConfigError at
+// `path`/solver/time_integration naming the deconvolver (a parameter rule is served by the two-pass rule of the
+// reduced_model kind: chosen once from the steady state reached at the configured fixed parameter).
 // Why a resolved deconvolver is not linear in its data (a parameter rule, or cg/cgls), or "" when it is (the
 // built-in linear ones with fixed parameters: landweber, landweber_relaxed, tikhonov, tsvd; a user-registered
 // deconvolver is taken as linear).

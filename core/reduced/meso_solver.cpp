@@ -13,8 +13,27 @@
 
 namespace closurelab {
 
+void ParameterChoiceRecord::add(const DeconvolutionStats& stats) {
+  if (stats.rule.empty() || stats.rule == "fixed") return;
+  const double p = stats.chosen_parameter;
+  if (solves++ == 0) {
+    rule = stats.rule;
+    parameter_name = stats.parameter_name;
+    first = min = max = p;
+  }
+  last = p;
+  min = std::min(min, p);
+  max = std::max(max, p);
+}
+
+json ParameterChoiceRecord::to_json() const {
+  return {{"rule", rule}, {"parameter", parameter_name}, {"solves", solves},
+          {"first", first}, {"last", last}, {"min", min}, {"max", max}};
+}
+
 json ClosureRunResult::to_json() const {
   json j = TimeLoopResult::to_json();
+  if (parameter_choice.solves > 0) j["parameter_choice"] = parameter_choice.to_json();
   j["message"] = message;
   j["deconvolution_matvecs"] = deconvolution_matvecs;
   j["deconvolution_seconds"] = deconvolution_seconds;
@@ -141,18 +160,23 @@ Eigen::Matrix2Xd MesoSolver::sample_reconstruction(const std::vector<Vec2>& poin
   return out;
 }
 
+Eigen::VectorXd MesoSolver::deconvolution_data() const {
+  const bool walls_off = !periodic_ && opt_.discretization != Discretization::fine_fine && !walls_are_data_;
+  if (opt_.discretization == Discretization::fine_fine) {
+    std::vector<Vec2> pts;
+    for (int j = 0; j < fine_.count; ++j) pts.emplace_back(fine_.node(j), 0.0);
+    return Reconstruction(as_line(coarse_), 1, v_).sample(pts);  // linear interpolation of the coarse data
+  }
+  return walls_off ? Eigen::VectorXd(v_.segment(1, v_.size() - 2)) : v_;
+}
+
 bool MesoSolver::deconvolve(std::string& issue) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   const bool walls_off = !periodic_ && opt_.discretization != Discretization::fine_fine && !walls_are_data_;
-  Eigen::VectorXd b = walls_off ? Eigen::VectorXd(v_.segment(1, v_.size() - 2)) : v_;
-  if (opt_.discretization == Discretization::fine_fine) {
-    std::vector<Vec2> pts;
-    for (int j = 0; j < fine_.count; ++j) pts.emplace_back(fine_.node(j), 0.0);
-    b = Reconstruction(as_line(coarse_), 1, v_).sample(pts);  // linear interpolation of the coarse data
-  }
-  const DeconvolutionResult r = deconvolver_.solve(b, opt_.noise_level);
+  const DeconvolutionResult r = deconvolver_.solve(deconvolution_data(), opt_.noise_level);
   matvecs_ += r.cost.matvecs;
+  choice_.add(r.stats);
   if (walls_off && opt_.discretization == Discretization::coarse_coarse) {
     reconstruction_ = Eigen::VectorXd::Zero(v_.size());  // zero on the wall surfaces (no slip)
     reconstruction_.segment(1, v_.size() - 2) = r.x;
@@ -267,6 +291,7 @@ MesoResult MesoSolver::run() {
   res.y = coarse_.nodes();
   res.v = reported_velocity();
   res.deconvolution_matvecs = matvecs_;
+  res.parameter_choice = choice_;
   res.deconvolution_seconds = deconv_seconds_;
   res.quadrature_seconds = quad_seconds_;
   res.quadrature_cost = quad_cost_;

@@ -119,11 +119,21 @@ struct MesoOracles {
 };
 
 // A reduced-model run's record, in one and two dimensions: the loop's outcome and what the closure cost.
+// The parameters a deconvolver's rule chose over a run's solves (empty when its rule is fixed).
+struct ParameterChoiceRecord {
+  std::string rule, parameter_name;
+  long solves = 0;
+  double first = 0.0, last = 0.0, min = 0.0, max = 0.0;
+  void add(const DeconvolutionStats& stats);  // ignores solves with rule fixed
+  json to_json() const;
+};
+
 struct ClosureRunResult : TimeLoopResult {
   long deconvolution_matvecs = 0;
   double deconvolution_seconds = 0.0, quadrature_seconds = 0.0;
   QuadratureCost quadrature_cost;
-  json to_json() const;  // everything but the fields
+  ParameterChoiceRecord parameter_choice;
+  json to_json() const;  // everything but the fields ("parameter_choice" when a rule chose)
 };
 
 struct MesoResult : ClosureRunResult {
@@ -174,6 +184,10 @@ class MesoSolver {
   Eigen::VectorXd reported_velocity();
   // One step of size dt; returns false on a numerical issue (message in `issue`).
   bool step(double dt, std::string& issue);
+  // What the closure deconvolves at the current v̄ (the data vector of deconvolver.solve) and the operator it was
+  // bound to: for choosing the closure's parameter once from a state (the two-pass rule, experiments/kinds).
+  Eigen::VectorXd deconvolution_data() const;
+  const ForwardOperator& forward_operator() const { return op_; }
   double time_step() const;
 
  private:
@@ -207,6 +221,7 @@ class MesoSolver {
   long matvecs_ = 0;
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
   QuadratureCost quad_cost_;  // the quadrature's setup and the calls so far
+  ParameterChoiceRecord choice_;
 };
 
 }  // namespace closurelab

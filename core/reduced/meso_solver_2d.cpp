@@ -158,6 +158,7 @@ bool MesoSolver2D::deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std:
   }
   const DeconvolutionResult r = deconvolver_.solve(b, opt_.noise_level);
   matvecs_ += r.cost.matvecs;
+  choice_.add(r.stats);
   x = r.x;
   deconv_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!x.allFinite()) {
@@ -239,6 +240,7 @@ MesoResult2D MesoSolver2D::run() {
   res.vx = vx_;
   res.vy = vy_;
   res.deconvolution_matvecs = matvecs_;
+  res.parameter_choice = choice_;
   res.deconvolution_seconds = deconv_seconds_;
   res.quadrature_seconds = quad_seconds_;
   res.quadrature_cost = quad_cost_;

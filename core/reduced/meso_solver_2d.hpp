@@ -107,6 +107,7 @@ class MesoSolver2D {
   long matvecs_ = 0;
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
   QuadratureCost quad_cost_;  // both quadratures' setup and calls
+  ParameterChoiceRecord choice_;
 };
 
 }  // namespace closurelab

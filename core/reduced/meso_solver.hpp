@@ -133,6 +133,11 @@ struct ClosureRunResult : TimeLoopResult {
   double deconvolution_seconds = 0.0, quadrature_seconds = 0.0;
   QuadratureCost quadrature_cost;
   ParameterChoiceRecord parameter_choice;
+  // Deconvolutions that reported a numerical issue (e.g. a solution that fits the data no better than x = 0): a
+  // run that goes on with them is not trustworthy, and the experiment kinds say so in the row's status.
+  long deconvolution_issues = 0;
+  std::string first_deconvolution_issue;
+  void count_deconvolution(const DeconvolutionResult& r);
   json to_json() const;  // everything but the fields ("parameter_choice" when a rule chose)
 };
 
@@ -222,6 +227,7 @@ class MesoSolver {
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
   QuadratureCost quad_cost_;  // the quadrature's setup and the calls so far
   ParameterChoiceRecord choice_;
+  ClosureRunResult deconvolution_record_;  // its deconvolution_issues and first_deconvolution_issue only
 };
 
 }  // namespace closurelab

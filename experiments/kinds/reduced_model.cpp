@@ -280,6 +280,8 @@ class ReducedModel : public ExperimentKind {
     cost["peak_memory_mib"] = peak_memory_mib();
     row["errors"] = errors;
     row["cost"] = cost;
+    propagate_worst_status(row, reduced.deconvolution_issues, reduced.first_deconvolution_issue,
+                           row.contains("direct_sph") ? &row["direct_sph"] : nullptr);
     row["profile"] = profile;
     return row;
   }

@@ -244,6 +244,8 @@ class ReducedModel2D : public ExperimentKind {
     cost["peak_memory_mib"] = peak_memory_mib();
     row["errors"] = errors;
     row["cost"] = cost;
+    propagate_worst_status(row, reduced.deconvolution_issues, reduced.first_deconvolution_issue,
+                           row.contains("direct_sph") ? &row["direct_sph"] : nullptr);
     row["fields"] = fields;
     return row;
   }

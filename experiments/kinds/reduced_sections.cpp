@@ -80,4 +80,24 @@ void add_reduced_timing(json& cost, const RepeatedReducedRuns& runs, const json*
   cost["direct_sph_timing"] = timing;
 }
 
+void propagate_worst_status(json& row, long deconvolution_issues, const std::string& first_issue,
+                            const json* direct_run) {
+  if (row.value("status", "") != "ok") return;
+  if (deconvolution_issues > 0) {
+    row["status"] = "numerical_issue";
+    row["message"] = "the closure's deconvolution reported a numerical issue in " +
+                     std::to_string(deconvolution_issues) + " solve(s); the first: " + first_issue;
+    return;
+  }
+  if (direct_run && direct_run->contains("status")) {
+    const std::string s = direct_run->at("status").get<std::string>();
+    if (s != "converged" && s != "target_time") {
+      row["status"] = s == "numerical_issue" ? "numerical_issue" : "no_convergence";
+      row["message"] = "the direct SPH reference ended " + s +
+                       (direct_run->contains("message") ? " (" + direct_run->at("message").get<std::string>() + ")" : "") +
+                       ": the errors against it measure a flow it did not reach";
+    }
+  }
+}
+
 }  // namespace closurelab

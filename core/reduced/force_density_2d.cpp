@@ -117,7 +117,64 @@ class ScratchRow {
   std::vector<int> touched_;
 };
 
+// The Gaussian window's 1D factor at the nodes of a periodic axis around q, periodic images summed; factors below
+// cutoff · φ(0) are dropped.
+std::vector<std::pair<int, double>> axis_window(const AveragingKernel& kernel, const UniformMesh1D& axis, double q,
+                                                double cutoff) {
+  std::vector<std::pair<int, double>> out;
+  for_nodes_within(axis, q, kernel.support_radius(), [&](int n, double d) { out.emplace_back(n, kernel.factor(d)); });
+  // for_nodes_within visits each image separately: merge the images of one node, then drop the tail.
+  std::sort(out.begin(), out.end());
+  std::size_t k = 0;
+  for (std::size_t u = 0; u < out.size(); ++u) {
+    if (k > 0 && out[k - 1].first == out[u].first)
+      out[k - 1].second += out[u].second;
+    else
+      out[k++] = out[u];
+  }
+  out.resize(k);
+  const double drop = cutoff * kernel.factor(0.0);
+  out.erase(std::remove_if(out.begin(), out.end(), [&](const auto& e) { return e.second < drop; }), out.end());
+  return out;
+}
+
+// The SPH pair stencil of the square lattice of spacing dx: the offsets within the smoothing function's support,
+// with F = w'(r)/r and q_ab = q_a − q_b = −(di, dj) dx; n0 = Σ w, the lattice's number density.
+struct Offset {
+  int di, dj;
+  double F, qx, qy;
+};
+std::vector<Offset> pair_stencil(const SmoothingKernel& w, double dx, double& n0) {
+  std::vector<Offset> stencil;
+  n0 = w.w(0.0);
+  const int reach = static_cast<int>(std::ceil(w.support() / dx));
+  for (int dj = -reach; dj <= reach; ++dj)
+    for (int di = -reach; di <= reach; ++di) {
+      const double r = std::hypot(di, dj) * dx;
+      if ((di == 0 && dj == 0) || r >= w.support()) continue;
+      stencil.push_back({di, dj, w.dw(r) / r, -di * dx, -dj * dx});
+      n0 += w.w(r);
+    }
+  return stencil;
+}
+
 }  // namespace
+
+ForceDensitySolver2D::Interp ForceDensitySolver2D::bilinear_weights(const TensorMesh2D& mesh, const Vec2& q) {
+  const auto axis = [](const UniformMesh1D& m, double c, int& i0, int& i1, double& t) {
+    const double s = (c - m.origin) / m.spacing;
+    const double f = std::floor(s);
+    t = s - f;
+    i0 = ((static_cast<int>(f) % m.count) + m.count) % m.count;
+    i1 = (i0 + 1) % m.count;
+  };
+  int x0, x1, y0, y1;
+  double tx, ty;
+  axis(mesh.x, q.x(), x0, x1, tx);
+  axis(mesh.y, q.y(), y0, y1, ty);
+  return {{mesh.index(x0, y0), mesh.index(x1, y0), mesh.index(x0, y1), mesh.index(x1, y1)},
+          {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty}};
+}
 
 ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKernel& kernel, Deconvolver& velocity,
                                            Deconvolver& density, ForceDensity2DOptions options)
@@ -144,59 +201,13 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
   fixed_ = lattice.fixed;
   // Bilinear weights of every particle on the periodic reconstruction mesh.
   interp_.resize(np);
-  const auto axis_weights = [](const UniformMesh1D& m, double q, int& i0, int& i1, double& t) {
-    const double s = (q - m.origin) / m.spacing;
-    const double f = std::floor(s);
-    t = s - f;
-    i0 = ((static_cast<int>(f) % m.count) + m.count) % m.count;
-    i1 = (i0 + 1) % m.count;
-  };
-  for (std::size_t a = 0; a < np; ++a) {
-    int x0, x1, y0, y1;
-    double tx, ty;
-    axis_weights(recon_.x, lattice.x[a], x0, x1, tx);
-    axis_weights(recon_.y, lattice.y[a], y0, y1, ty);
-    interp_[a] = {{recon_.index(x0, y0), recon_.index(x1, y0), recon_.index(x0, y1), recon_.index(x1, y1)},
-                  {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty}};
-  }
-  // The SPH pair stencil of the lattice: offsets within the support, F = w'(r)/r, and n0 = Σ w.
-  const SmoothingKernel w = scene.smoothing_kernel();
-  struct Offset {
-    int di, dj;
-    double F, qx, qy;  // q_ab = q_a − q_b = −(di, dj) ε'
-  };
-  std::vector<Offset> stencil;
-  double n0 = w.w(0.0);
-  const int reach = static_cast<int>(std::ceil(w.support() / dx));
-  for (int dj = -reach; dj <= reach; ++dj)
-    for (int di = -reach; di <= reach; ++di) {
-      const double r = std::hypot(di, dj) * dx;
-      if ((di == 0 && dj == 0) || r >= w.support()) continue;
-      stencil.push_back({di, dj, w.dw(r) / r, -di * dx, -dj * dx});
-      n0 += w.w(r);
-    }
+  for (std::size_t a = 0; a < np; ++a) interp_[a] = bilinear_weights(recon_, Vec2(lattice.x[a], lattice.y[a]));
+  double n0 = 0.0;
+  const std::vector<Offset> stencil = pair_stencil(scene.smoothing_kernel(), dx, n0);
   const double m = scene.particle_mass();
   const double p0 = scene.pressure(n0, m), dn = 1e-6 * n0;
   const double dp_dn = (scene.pressure(n0 + dn, m) - scene.pressure(n0 - dn, m)) / (2.0 * dn);
   const double beta = dp_dn / (n0 * n0) - 2.0 * p0 / (n0 * n0 * n0);
-  // The window: separable, periodic images summed; each axis's factor below window_cutoff · φ(0) is dropped.
-  const auto axis_window = [&](const UniformMesh1D& axis, double q) {
-    std::vector<std::pair<int, double>> out;
-    for_nodes_within(axis, q, kernel.support_radius(), [&](int n, double d) { out.emplace_back(n, kernel.factor(d)); });
-    // for_nodes_within visits each image separately: merge the images of one node, then drop the tail.
-    std::sort(out.begin(), out.end());
-    std::size_t k = 0;
-    for (std::size_t u = 0; u < out.size(); ++u) {
-      if (k > 0 && out[k - 1].first == out[u].first)
-        out[k - 1].second += out[u].second;
-      else
-        out[k++] = out[u];
-    }
-    out.resize(k);
-    const double drop = opt_.window_cutoff * kernel.factor(0.0);
-    out.erase(std::remove_if(out.begin(), out.end(), [&](const auto& e) { return e.second < drop; }), out.end());
-    return out;
-  };
   const Eigen::Index nc = coarse_.size(), nr = recon_.size();
   const int ncx = coarse_.nx(), nrx = recon_.nx(), nry = recon_.ny();
   Eigen::VectorXd rho_bar = Eigen::VectorXd::Zero(nc), fluid_mass = Eigen::VectorXd::Zero(nc),
@@ -217,13 +228,13 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
     for (int u = 0; u < 4; ++u) rows[k].add(interp_[b].node[u], c * interp_[b].weight[u]);
   };
   std::vector<std::vector<std::pair<int, double>>> wx_of_column(static_cast<std::size_t>(lnx));
-  for (int i = 0; i < lnx; ++i) wx_of_column[static_cast<std::size_t>(i)] = axis_window(coarse_.x, (i + 0.5) * dx);
+  for (int i = 0; i < lnx; ++i) wx_of_column[static_cast<std::size_t>(i)] = axis_window(kernel, coarse_.x, (i + 0.5) * dx, opt_.window_cutoff);
   constexpr int max_slots = 16;  // reconstruction rows one lattice row's particle rows touch
   std::vector<int> slot_of(static_cast<std::size_t>(nry), -1), slot_row;
   std::array<std::vector<double>, map_count> block;
   for (auto& v : block) v.assign(static_cast<std::size_t>(ncx) * max_slots * nrx, 0.0);
   for (int j = 0; j < lny; ++j) {
-    const std::vector<std::pair<int, double>> wy = axis_window(coarse_.y, (j + 0.5) * dx);
+    const std::vector<std::pair<int, double>> wy = axis_window(kernel, coarse_.y, (j + 0.5) * dx, opt_.window_cutoff);
     for (int i = 0; i < lnx; ++i) {
       const auto a = static_cast<std::size_t>(site[static_cast<std::size_t>(j * lnx + i)]);
       const std::vector<std::pair<int, double>>& wx = wx_of_column[static_cast<std::size_t>(i)];

@@ -120,6 +120,7 @@ class ForceDensitySolver2D {
     std::array<int, 4> node;
     std::array<double, 4> weight;
   };
+  static Interp bilinear_weights(const TensorMesh2D& periodic_mesh, const Vec2& q);
   bool deconvolve(Deconvolver& d, const Eigen::VectorXd& data, Eigen::VectorXd& x, std::string& issue);
   bool steady_solve(std::string& issue);
   double superficial_velocity(std::string& issue);

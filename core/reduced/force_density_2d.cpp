@@ -77,10 +77,10 @@ void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, c
 }
 
 void check_force_density_closure(const json& deconvolver, const std::string& path) {
-  const std::string why = closure_nonlinearity(deconvolver);
-  if (!why.empty())
+  const std::string name = deconvolver.value("name", "");
+  if (name == "cg" || name == "cgls")
     throw ConfigError(path + "/closure/deconvolver", "the steady solve probes the closure once, which needs it "
-                                                     "linear in the data; " + why);
+                                                     "linear in the data; " + closure_nonlinearity(deconvolver));
   if (deconvolver.value("regularizer", "identity") != "identity")
     throw ConfigError(path + "/closure/deconvolver/regularizer",
                       "the velocity's unknowns are the reconstruction nodes outside the solid, not a tensor mesh: "

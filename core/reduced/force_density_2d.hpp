@@ -110,6 +110,9 @@ class ForceDensitySolver2D {
   // Scene::make_particles orders them), for tests.
   Eigen::VectorXd interpolate_to_particles(const Eigen::VectorXd& on_reconstruction_mesh) const;
   const std::vector<int>& free_nodes() const { return free_; }
+  // The state on the free nodes (what the two deconvolvers are handed): v̄_x, v̄_y and n̄.
+  const Eigen::VectorXd& free_vx() const { return vx_; }
+  const Eigen::VectorXd& free_density() const { return n_; }
   // The velocity operator's columns: the reconstruction nodes some fluid particle reads.
   const std::vector<int>& velocity_unknowns() const { return velocity_columns_; }
   // The body force's average Σ_fluid ψ m g / ρ̄ at every coarse node.
@@ -154,8 +157,9 @@ class ForceDensitySolver2D {
   ClosureRunResult deconvolution_record_;  // its deconvolution_issues and first_deconvolution_issue only
 };
 
-// The closure must be linear in its data (a fixed parameter, not cg/cgls): ConfigError at `path`/closure/deconvolver
-// otherwise (core/reduced/implicit_closure.hpp's rule).
+// The closure must be linear in its data when the steady system is probed: not cg/cgls (ConfigError at
+// `path`/closure/deconvolver); a parameter rule is served by the two-pass rule of the experiment kind (each
+// deconvolver's parameter chosen once from the steady state reached at its configured fixed parameter).
 void check_force_density_closure(const json& resolved_deconvolver, const std::string& path);
 
 }  // namespace closurelab

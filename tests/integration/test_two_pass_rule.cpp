@@ -61,3 +61,24 @@ TEST(TwoPassRule, KrylovClosuresStayRefusedUnderBackwardEuler) {
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.err.find("/base/solver/time_integration"), std::string::npos) << o.err;
 }
+
+TEST(TwoPassRule, TheForceDensity2DModelChoosesEachDeconvolversParameterOnce) {
+  const auto work = fresh_work_folder("two_pass_cylinders");
+  const json base = {{"scene", {{"name", "cylinder-lattice"}, {"n", 32}, {"eta_over_l", 0.125}}},
+                     {"closure", {{"deconvolver", {{"name", "tikhonov"}, {"rule", "gcv"}}}}},
+                     {"reference", {{"direct_sph", false}}},
+                     {"timing", {{"min_repeats", 1}, {"max_repeats", 1}}}};
+  write_text(work / "spec.json",
+             json{{"name", "spec"}, {"kind", "reduced_model_2d_force_density"}, {"base", base}}.dump(2));
+  const CliOutcome o = run_closurelab(work, "run " + (work / "spec.json").string() + " --out " + (work / "out").string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  const json row = json::parse(read_text(work / "out" / "spec.json")).at("rows").at(0);
+  ASSERT_EQ(row.value("status", ""), "ok") << row.dump(1).substr(0, 1500);
+  const json& choice = row.at("reduced_model").at("two_pass_rule");
+  EXPECT_EQ(choice.at("pass_1_status"), "ok");
+  for (const char* what : {"velocity", "density"}) {
+    const double alpha = choice.at(what).at("chosen").get<double>();
+    EXPECT_TRUE(std::isfinite(alpha) && alpha > 0.0) << what << " " << alpha;
+    EXPECT_EQ(choice.at(what).at("rule_status"), "ok") << what;
+  }
+}

@@ -35,6 +35,13 @@ Waals (7.1), P = n k_B T / (1 - c_1 n) - c_2 n^2 with c_1 n0 = 1/2, c_2 n0 = k_B
 an unlike pair adding 2 (1 - k*) c_2 (k* = 1/2) to P_i/n_i^2 + P_j/n_j^2; mu_ij = mu_i + mu_j (arithmetic);
 c = 10 x the peak of the piecewise-parabolic steady solution.
 
+--scene cylinder-lattice builds closurelab's cylinder lattice (core/scenes/cylinder_lattice_scene.cpp defaults;
+--ny is n, the cell's n x n lattice, L = 1, --radius-over-length a/L): periodic in x and y (PySPH's DomainManager),
+the lattice particles within a of the cell's centre solid at zero velocity with their solid-solid density part
+summed once ("nfix", images in x and y) like the channel's walls, and taking part in the fluid's pair forces with
+their pressure; g = 0.01 on the fluid; P = c^2 (m n - rho0) + 0.002 rho0 c^2, c from the scene's rule
+(CylinderLatticeScene).
+
 Each particle carries `lattice`, its index j n_x + i, so a comparison can pair particles whatever order PySPH
 keeps them in. The solver writes PySPH's own output files (HDF5 with h5py, else npz) into the output folder.
 """
@@ -197,17 +204,20 @@ def quintic_w(r, h):
     return 7.0 / (478.0 * math.pi * h * h) * s
 
 
-def wall_wall_density(x, y, lx, h):
-    """sum_j w(|q_i - q_j|) over the given particles and their images shifted by -lx, 0, +lx (periodic in x)."""
+def wall_wall_density(x, y, lx, h, ly=None):
+    """sum_j w(|q_i - q_j|) over the given particles and their images shifted by -lx, 0, +lx (periodic in x) and,
+    given ly, by -ly, 0, +ly too (periodic in y)."""
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
     n = np.zeros_like(x)
+    yshifts = (0.0,) if ly is None else (-ly, 0.0, ly)
     for shift in (-lx, 0.0, lx):
-        for a in range(len(x)):
-            q = np.hypot(x[a] - (x + shift), y[a] - y) / h
-            s = np.where(q < 3.0, (3.0 - q) ** 5, 0.0) - np.where(q < 2.0, 6.0 * (2.0 - q) ** 5, 0.0) \
-                + np.where(q < 1.0, 15.0 * (1.0 - q) ** 5, 0.0)
-            n[a] += 7.0 / (478.0 * math.pi * h * h) * np.sum(s)
+        for yshift in yshifts:
+            for a in range(len(x)):
+                q = np.hypot(x[a] - (x + shift), y[a] - (y + yshift)) / h
+                s = np.where(q < 3.0, (3.0 - q) ** 5, 0.0) - np.where(q < 2.0, 6.0 * (2.0 - q) ** 5, 0.0) \
+                    + np.where(q < 1.0, 15.0 * (1.0 - q) ** 5, 0.0)
+                n[a] += 7.0 / (478.0 * math.pi * h * h) * np.sum(s)
     return n
 
 
@@ -246,6 +256,9 @@ class ChannelScene(object):
 
     def is_wall(self, y):
         return y < self.wall_lo or y > self.wall_hi
+
+    def is_solid(self, x, y):
+        return self.is_wall(y)
 
 
 class LayeredScene(ChannelScene):
@@ -317,6 +330,53 @@ class LayeredScene(ChannelScene):
         return self.row_phase[r] if 0 <= r < self.fluid_rows else 0
 
 
+class CylinderLatticeScene(ChannelScene):
+    """cylinder-lattice (closurelab core/scenes/cylinder_lattice_scene.cpp defaults): a square cell of side L,
+    periodic in x and y, the n x n lattice of spacing eps' = L / n; the lattice particles closer than
+    a = radius_over_length L to the centre (L/2, L/2) are solid, at zero velocity; the fluid is driven by g e_x.
+    P = c^2 (m n - rho0) + P_b with P_b = 0.002 rho0 c^2; c = 10 V with
+    V^2 = max(U^2, nu U / L, g L, nu^2 / L^2) (Morris, Fox & Zhu 1997), U = 1.5 <u> L / (L - 2a) the gap-velocity
+    estimate from the Darcy permeability of the square array, <u> = k g / nu. The permeability is only needed for
+    U, and at the scene's defaults (g = 0.01, nu = 1) nu^2 / L^2 = 1 exceeds the other three terms by 100 x and more,
+    so here k is Hasimoto's (1959) dilute series k / L^2 = (-ln c - 1.476 + 2 c - 1.774 c^2) / (8 pi)
+    (c = pi a^2 / L^2; within a few % of Sangani & Acrivos at c <= 0.3); the scene refuses parameters under which
+    the U terms come within a factor 10 of the largest, where the estimate's error could change c."""
+
+    def __init__(self, n, radius_over_length=0.2, l=1.0, rho=1.0, mu=1.0, g=0.01, sound_speed_factor=10.0,
+                 background_pressure_factor=0.002):
+        self.nx = self.ny = n
+        self.dx = l / n
+        self.h = self.dx
+        self.lx = self.ly = l
+        self.a = radius_over_length * l
+        self.rho0, self.mu, self.g = rho, mu, g
+        self.wall_model, self.ghost_beta_max, self.viscous_stiffening = "zero_velocity", 1.0e6, 1.0
+        self.wall_lo, self.wall_hi = -1.0, 2.0 * l  # no walls (PairForce51's ghost terms are off)
+        nu = mu / rho
+        c = math.pi * radius_over_length ** 2
+        k = l * l * (-math.log(c) - 1.476 + 2.0 * c - 1.774 * c * c) / (8.0 * math.pi)
+        u_gap = 1.5 * (k * g / nu) * l / (l - 2.0 * self.a)
+        v2_flow = max(u_gap * u_gap, nu * u_gap / l)
+        v2 = max(g * l, nu * nu / (l * l))
+        if v2_flow * 10.0 > v2:
+            raise SystemExit("cylinder-lattice: the sound speed depends on the gap velocity here (V^2 terms %g vs %g); "
+                             "this model's permeability estimate is not precise enough for it" % (v2_flow, v2))
+        self.peak = u_gap
+        self.c0 = sound_speed_factor * math.sqrt(v2)
+        self.pb = background_pressure_factor * rho * self.c0 * self.c0
+        reach = int(math.ceil(3.0 * self.h / self.dx)) + 1
+        n_star = sum(quintic_w(self.dx * math.hypot(i, j), self.h)
+                     for i in range(-reach, reach + 1) for j in range(-reach, reach + 1))
+        self.mass = rho / n_star
+
+    def is_wall(self, y):
+        return False
+
+    def is_solid(self, x, y):
+        cx = cy = 0.5 * self.lx
+        return (x - cx) * (x - cx) + (y - cy) * (y - cy) < self.a * self.a
+
+
 def round_half_away(x):
     """C's lround."""
     return math.floor(x + 0.5) if x >= 0 else -math.floor(-x + 0.5)
@@ -328,18 +388,26 @@ class PoiseuillePeer(Application):
         group.add_argument("--nx", type=int, default=12, help="particle columns of the periodic strip")
         group.add_argument("--wall-model", default="zero_velocity", choices=["zero_velocity", "ghost_velocity"])
         group.add_argument("--ghost-beta-max", type=float, default=1.0e6)
-        group.add_argument("--scene", default="poiseuille-uniform", choices=["poiseuille-uniform", "layered-two-phase"],
-                           help="layered-two-phase: --ny fluid rows, walls outside, zero-velocity walls only")
+        group.add_argument("--scene", default="poiseuille-uniform",
+                           choices=["poiseuille-uniform", "layered-two-phase", "cylinder-lattice"],
+                           help="layered-two-phase: --ny fluid rows, walls outside, zero-velocity walls only; "
+                                "cylinder-lattice: --ny is n (the cell's n x n lattice), --nx ignored")
         group.add_argument("--case", default="case1", choices=["case1", "case2", "case3"])
+        group.add_argument("--radius-over-length", type=float, default=0.2, help="cylinder-lattice: a / L")
 
     def consume_user_options(self):
         o = self.options
         if o.scene == "layered-two-phase":
             self.scene = LayeredScene(o.ny, o.nx, case=o.case)
+        elif o.scene == "cylinder-lattice":
+            self.scene = CylinderLatticeScene(o.ny, radius_over_length=o.radius_over_length)
         else:
             self.scene = ChannelScene(o.ny, o.nx, wall_model=o.wall_model, ghost_beta_max=o.ghost_beta_max)
 
     def create_domain(self):
+        if isinstance(self.scene, CylinderLatticeScene):
+            return DomainManager(xmin=0.0, xmax=self.scene.lx, ymin=0.0, ymax=self.scene.ly, periodic_in_x=True,
+                                 periodic_in_y=True)
         return DomainManager(xmin=0.0, xmax=self.scene.lx, periodic_in_x=True)
 
     def create_particles(self):
@@ -349,7 +417,7 @@ class PoiseuillePeer(Application):
             y = (j + 0.5) * s.dx
             for i in range(s.nx):
                 x = (i + 0.5) * s.dx
-                if s.is_wall(y):
+                if s.is_solid(x, y):
                     wx.append(x), wy.append(y), wl.append(j * s.nx + i)
                 else:
                     fx.append(x), fy.append(y), fl.append(j * s.nx + i)
@@ -372,7 +440,8 @@ class PoiseuillePeer(Application):
         fluid, solid = arrays
         # The walls' fixed wall-wall density, once (walls do not move): the quintic spline summed over the wall
         # particles and their periodic images in x, itself included.
-        solid.nfix[:] = wall_wall_density(solid.x, solid.y, s.lx, s.h)
+        solid.nfix[:] = wall_wall_density(solid.x, solid.y, s.lx, s.h,
+                                          ly=s.ly if isinstance(s, CylinderLatticeScene) else None)
         return [fluid, solid]
 
     def create_equations(self):

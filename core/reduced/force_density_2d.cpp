@@ -385,7 +385,7 @@ bool ForceDensitySolver2D::deconvolve(Deconvolver& d, const Eigen::VectorXd& dat
   const auto t0 = std::chrono::steady_clock::now();
   const DeconvolutionResult r = d.solve(data, opt_.noise_level);
   matvecs_ += r.cost.matvecs;
-  deconvolution_record_.count_deconvolution(r);
+  deconvolution_issues_.count(r);
   deconv_seconds_ += seconds_since(t0);
   if (&d == &velocity_) {  // on every reconstruction node: zero inside the solid
     x = Eigen::VectorXd::Zero(recon_.size());
@@ -530,8 +530,7 @@ ForceDensity2DResult ForceDensitySolver2D::run() {
   }
   res.free_nodes = static_cast<long>(free_.size());
   res.deconvolution_matvecs = matvecs_;
-  res.deconvolution_issues = deconvolution_record_.deconvolution_issues;
-  res.first_deconvolution_issue = deconvolution_record_.first_deconvolution_issue;
+  res.deconvolution_issues = deconvolution_issues_;
   res.deconvolution_seconds = deconv_seconds_;
   res.setup_seconds = setup_seconds_;
   res.assembly_seconds = assembly_seconds_;

@@ -154,7 +154,7 @@ class ForceDensitySolver2D {
   double fluid_area_per_particle_ = 0.0;
   long matvecs_ = 0;
   double deconv_seconds_ = 0.0, setup_seconds_ = 0.0, assembly_seconds_ = 0.0, probe_seconds_ = 0.0;
-  ClosureRunResult deconvolution_record_;  // its deconvolution_issues and first_deconvolution_issue only
+  DeconvolutionIssues deconvolution_issues_;
 };
 
 // The closure must be linear in its data when the steady system is probed: not cg/cgls (ConfigError at

@@ -31,15 +31,15 @@ json ParameterChoiceRecord::to_json() const {
           {"first", first}, {"last", last}, {"min", min}, {"max", max}};
 }
 
-void ClosureRunResult::count_deconvolution(const DeconvolutionResult& r) {
+void DeconvolutionIssues::count(const DeconvolutionResult& r) {
   if (r.status != Status::numerical_issue) return;
-  if (deconvolution_issues++ == 0) first_deconvolution_issue = r.stats.message;
+  if (solves++ == 0) first = r.stats.message;
 }
 
 json ClosureRunResult::to_json() const {
   json j = TimeLoopResult::to_json();
-  if (deconvolution_issues > 0)
-    j["deconvolution_issues"] = {{"solves", deconvolution_issues}, {"first", first_deconvolution_issue}};
+  if (deconvolution_issues.solves > 0)
+    j["deconvolution_issues"] = {{"solves", deconvolution_issues.solves}, {"first", deconvolution_issues.first}};
   if (parameter_choice.solves > 0) j["parameter_choice"] = parameter_choice.to_json();
   j["message"] = message;
   j["deconvolution_matvecs"] = deconvolution_matvecs;
@@ -184,7 +184,7 @@ bool MesoSolver::deconvolve(std::string& issue) {
   const DeconvolutionResult r = deconvolver_.solve(deconvolution_data(), opt_.noise_level);
   matvecs_ += r.cost.matvecs;
   choice_.add(r.stats);
-  deconvolution_record_.count_deconvolution(r);
+  deconvolution_issues_.count(r);
   if (walls_off && opt_.discretization == Discretization::coarse_coarse) {
     reconstruction_ = Eigen::VectorXd::Zero(v_.size());  // zero on the wall surfaces (no slip)
     reconstruction_.segment(1, v_.size() - 2) = r.x;
@@ -300,8 +300,7 @@ MesoResult MesoSolver::run() {
   res.v = reported_velocity();
   res.deconvolution_matvecs = matvecs_;
   res.parameter_choice = choice_;
-  res.deconvolution_issues = deconvolution_record_.deconvolution_issues;
-  res.first_deconvolution_issue = deconvolution_record_.first_deconvolution_issue;
+  res.deconvolution_issues = deconvolution_issues_;
   res.deconvolution_seconds = deconv_seconds_;
   res.quadrature_seconds = quad_seconds_;
   res.quadrature_cost = quad_cost_;

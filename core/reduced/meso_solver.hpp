@@ -128,16 +128,20 @@ struct ParameterChoiceRecord {
   json to_json() const;
 };
 
+// Deconvolutions that reported a numerical issue (e.g. a solution that fits the data no better than x = 0): a run
+// that goes on with them is not trustworthy, and the experiment kinds say so in the row's status.
+struct DeconvolutionIssues {
+  long solves = 0;
+  std::string first;  // the first one's message
+  void count(const DeconvolutionResult& r);
+};
+
 struct ClosureRunResult : TimeLoopResult {
   long deconvolution_matvecs = 0;
   double deconvolution_seconds = 0.0, quadrature_seconds = 0.0;
   QuadratureCost quadrature_cost;
   ParameterChoiceRecord parameter_choice;
-  // Deconvolutions that reported a numerical issue (e.g. a solution that fits the data no better than x = 0): a
-  // run that goes on with them is not trustworthy, and the experiment kinds say so in the row's status.
-  long deconvolution_issues = 0;
-  std::string first_deconvolution_issue;
-  void count_deconvolution(const DeconvolutionResult& r);
+  DeconvolutionIssues deconvolution_issues;
   json to_json() const;  // everything but the fields ("parameter_choice" when a rule chose)
 };
 
@@ -227,7 +231,7 @@ class MesoSolver {
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
   QuadratureCost quad_cost_;  // the quadrature's setup and the calls so far
   ParameterChoiceRecord choice_;
-  ClosureRunResult deconvolution_record_;  // its deconvolution_issues and first_deconvolution_issue only
+  DeconvolutionIssues deconvolution_issues_;
 };
 
 }  // namespace closurelab

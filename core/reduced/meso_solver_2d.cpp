@@ -159,7 +159,7 @@ bool MesoSolver2D::deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std:
   const DeconvolutionResult r = deconvolver_.solve(b, opt_.noise_level);
   matvecs_ += r.cost.matvecs;
   choice_.add(r.stats);
-  deconvolution_record_.count_deconvolution(r);
+  deconvolution_issues_.count(r);
   x = r.x;
   deconv_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!x.allFinite()) {
@@ -242,8 +242,7 @@ MesoResult2D MesoSolver2D::run() {
   res.vy = vy_;
   res.deconvolution_matvecs = matvecs_;
   res.parameter_choice = choice_;
-  res.deconvolution_issues = deconvolution_record_.deconvolution_issues;
-  res.first_deconvolution_issue = deconvolution_record_.first_deconvolution_issue;
+  res.deconvolution_issues = deconvolution_issues_;
   res.deconvolution_seconds = deconv_seconds_;
   res.quadrature_seconds = quad_seconds_;
   res.quadrature_cost = quad_cost_;

@@ -108,7 +108,7 @@ class MesoSolver2D {
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
   QuadratureCost quad_cost_;  // both quadratures' setup and calls
   ParameterChoiceRecord choice_;
-  ClosureRunResult deconvolution_record_;  // its deconvolution_issues and first_deconvolution_issue only
+  DeconvolutionIssues deconvolution_issues_;
 };
 
 }  // namespace closurelab

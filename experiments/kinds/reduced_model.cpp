@@ -161,11 +161,7 @@ class ReducedModel : public ExperimentKind {
             const DeconvolutionResult chosen = rule->solve(first.deconvolution_data(), opt.noise_level);
             loop += r1.wall_seconds + seconds_since(t1);
             const std::string name = chosen.stats.parameter_name;
-            const bool integer = fixed.contains(name) && fixed.at(name).is_number_integer();
-            if (integer)
-              fixed[name] = std::lround(chosen.stats.chosen_parameter);
-            else
-              fixed[name] = chosen.stats.chosen_parameter;
+            fixed = with_chosen_parameter(fixed, chosen.stats);
             two_pass_record = {{"rule", configured.at("rule")},
                                {"parameter", name},
                                {"pass_1_parameter", configured.value(name, json())},
@@ -280,7 +276,7 @@ class ReducedModel : public ExperimentKind {
     cost["peak_memory_mib"] = peak_memory_mib();
     row["errors"] = errors;
     row["cost"] = cost;
-    propagate_worst_status(row, reduced.deconvolution_issues, reduced.first_deconvolution_issue,
+    propagate_worst_status(row, reduced.deconvolution_issues,
                            row.contains("direct_sph") ? &row["direct_sph"] : nullptr);
     row["profile"] = profile;
     return row;

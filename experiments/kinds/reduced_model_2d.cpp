@@ -244,7 +244,7 @@ class ReducedModel2D : public ExperimentKind {
     cost["peak_memory_mib"] = peak_memory_mib();
     row["errors"] = errors;
     row["cost"] = cost;
-    propagate_worst_status(row, reduced.deconvolution_issues, reduced.first_deconvolution_issue,
+    propagate_worst_status(row, reduced.deconvolution_issues,
                            row.contains("direct_sph") ? &row["direct_sph"] : nullptr);
     row["fields"] = fields;
     return row;

@@ -139,12 +139,8 @@ class ReducedModelForceDensity2D : public ExperimentKind {
               auto rule = reg.deconvolvers.create(configured, "/closure/deconvolver");
               rule->setup(op);
               const DeconvolutionResult c = rule->solve(data, opt.noise_level);
-              json chosen = fixed;
+              const json chosen = with_chosen_parameter(fixed, c.stats);
               const std::string name = c.stats.parameter_name;
-              if (chosen.contains(name) && chosen.at(name).is_number_integer())
-                chosen[name] = std::lround(c.stats.chosen_parameter);
-              else
-                chosen[name] = c.stats.chosen_parameter;
               two_pass_record["parameter"] = name;
               two_pass_record["pass_1_parameter"] = configured.value(name, json());
               two_pass_record[what] = {{"chosen", chosen.at(name)}, {"rule_status", row_status(c.status)},
@@ -226,7 +222,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     cost["peak_memory_mib"] = peak_memory_mib();
     row["errors"] = errors;
     row["cost"] = cost;
-    propagate_worst_status(row, reduced.deconvolution_issues, reduced.first_deconvolution_issue,
+    propagate_worst_status(row, reduced.deconvolution_issues,
                            row.contains("direct_sph") ? &row["direct_sph"] : nullptr);
     row["fields"] = fields;
     return row;

@@ -80,13 +80,21 @@ void add_reduced_timing(json& cost, const RepeatedReducedRuns& runs, const json*
   cost["direct_sph_timing"] = timing;
 }
 
-void propagate_worst_status(json& row, long deconvolution_issues, const std::string& first_issue,
-                            const json* direct_run) {
+json with_chosen_parameter(json fixed, const DeconvolutionStats& chosen) {
+  const std::string& name = chosen.parameter_name;
+  if (fixed.contains(name) && fixed.at(name).is_number_integer())
+    fixed[name] = std::lround(chosen.chosen_parameter);
+  else
+    fixed[name] = chosen.chosen_parameter;
+  return fixed;
+}
+
+void propagate_worst_status(json& row, const DeconvolutionIssues& deconvolution_issues, const json* direct_run) {
   if (row.value("status", "") != "ok") return;
-  if (deconvolution_issues > 0) {
+  if (deconvolution_issues.solves > 0) {
     row["status"] = "numerical_issue";
     row["message"] = "the closure's deconvolution reported a numerical issue in " +
-                     std::to_string(deconvolution_issues) + " solve(s); the first: " + first_issue;
+                     std::to_string(deconvolution_issues.solves) + " solve(s); the first: " + deconvolution_issues.first;
     return;
   }
   if (direct_run && direct_run->contains("status")) {

@@ -6,6 +6,8 @@
 
 #include "core/base/params.hpp"
 #include "core/base/repeated_timing.hpp"
+#include "core/closure/deconvolver.hpp"
+#include "core/reduced/meso_solver.hpp"
 
 namespace closurelab {
 
@@ -40,11 +42,14 @@ RepeatedReducedRuns repeat_reduced_run(const std::function<ReducedRunSeconds()>&
 // direct run and whether they are this run's).
 void add_reduced_timing(json& cost, const RepeatedReducedRuns& runs, const json* direct_run);
 
+// The two-pass rule's second deconvolver: `fixed` (a resolved deconvolver with rule fixed) with the parameter the
+// rule chose (`chosen`: its parameter_name and chosen_parameter; an integer parameter rounded).
+json with_chosen_parameter(json fixed, const DeconvolutionStats& chosen);
+
 // A reduced row's status, the worst of its parts: the reduced run's own (`status`, already in the row), then
-// numerical issues of the closure's deconvolutions (`deconvolution_issues` > 0: numerical_issue), then the direct
+// numerical issues of the closure's deconvolutions (any: numerical_issue), then the direct
 // reference's (its record's "status": a reference that did not reach its steady state or target time makes the
 // errors against it measure another flow). Sets row["status"] and, when it changed, row["message"].
-void propagate_worst_status(json& row, long deconvolution_issues, const std::string& first_issue,
-                            const json* direct_run);
+void propagate_worst_status(json& row, const DeconvolutionIssues& deconvolution_issues, const json* direct_run);
 
 }  // namespace closurelab

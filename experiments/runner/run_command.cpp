@@ -1,5 +1,6 @@
 #include "experiments/runner/run_command.hpp"
 
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -15,6 +16,11 @@
 namespace closurelab {
 
 namespace {
+
+bool env_set(const char* name) {
+  const char* v = std::getenv(name);
+  return v && *v;
+}
 
 const char* const run_usage =
     "usage: closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR] [--shard i/N]\n"
@@ -79,6 +85,7 @@ int run_command(int argc, char** argv, const Registry& registry) {
   bool dry_run = false;
   std::vector<std::string> overrides;
   std::string spec_file, store_dir = default_reference_store_dir();
+  bool store_given = false;
   for (int i = 0; i < argc; ++i) opt.command_line.append(i ? " " : "").append(argv[i]);
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
@@ -102,6 +109,7 @@ int run_command(int argc, char** argv, const Registry& registry) {
       opt.force = true;
     } else if (a == "--store") {
       store_dir = need("a folder");
+      store_given = true;
       if (store_dir.empty()) throw ConfigError("", "--store needs a folder name, got ''");
     } else if (a == "--shard") {
       opt.shard = parse_shard(need("i/N"));
@@ -128,12 +136,16 @@ int run_command(int argc, char** argv, const Registry& registry) {
   if (dry_run) return print_resolved_cells(spec, registry);
   if (opt.out_dir.empty()) opt.out_dir = default_out_dir(spec);
   configure_reference_store(store_dir, opt.force);
-  const int code = run_experiment(spec, registry, opt);
-  std::error_code ec;
-  if (std::filesystem::is_directory(store_dir, ec))
-    std::cerr << "reference store " << store_dir << ": " << reference_store().list().size() << " entries, "
-              << reference_store().total_bytes() << " bytes\n";
-  return code;
+  opt.after_run_on_rank0 = [&] {  // rank 0 only: under mpirun the summary is printed once
+    if (!store_given && !env_set("CLOSURELAB_STORE") && !env_set("HOME"))
+      std::cerr << "note: neither CLOSURELAB_STORE nor HOME is set: the reference store is the folder " << store_dir
+                << " under the working folder (set CLOSURELAB_STORE or pass --store to share one)\n";
+    std::error_code ec;
+    if (std::filesystem::is_directory(store_dir, ec))
+      std::cerr << "reference store " << store_dir << ": " << reference_store().list().size() << " entries, "
+                << reference_store().total_bytes() << " bytes\n";
+  };
+  return run_experiment(spec, registry, opt);
 }
 
 }  // namespace closurelab

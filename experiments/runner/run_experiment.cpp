@@ -188,7 +188,9 @@ int run_experiment(const json& spec, const Registry& registry, const RunOptions&
   const RankGroup group;  // MPI_Init under mpirun; MPI_Finalize when the run is over
   if (group.rank() == 0) {
     try {
-      return run_as_rank0(spec, registry, options, group);
+      const int code = run_as_rank0(spec, registry, options, group);
+      if (options.after_run_on_rank0) options.after_run_on_rank0();
+      return code;
     } catch (const std::exception& e) {
       // Unexpected: the other ranks may still wait for cells; end them rather than hang in MPI_Finalize.
       if (group.size() > 1) {

@@ -5,6 +5,7 @@
 // threads of this process and, under mpirun, on the other ranks (cell_scheduler.hpp); a shard of the matrix
 // runs alone and `closurelab merge` writes the table (shards.hpp).
 #include <optional>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,8 @@ struct RunOptions {
   std::string command_line;
   std::string spec_file;
   Shard shard;  // --shard i/N; not sharded by default
+  // Called on rank 0 only, when its run is over (e.g. the store summary: under mpirun once, not once per rank).
+  std::function<void()> after_run_on_rank0;
 };
 
 // Runs the whole matrix (or one shard); returns the process exit code (0: all cells ok or recorded, 1: a cell

@@ -55,3 +55,13 @@ TEST(ReducedRowStatus, AHealthyRowStaysOk) {
   EXPECT_EQ(row.at("status"), "ok");
   EXPECT_FALSE(row.contains("message"));
 }
+
+TEST(ReferenceStoreLocation, WithoutHomeOrCLOSURELAB_STOREARunSaysWhereTheStoreIs) {
+  const auto work = fresh_work_folder("store_without_home");
+  write_text(work / "spec.json", json{{"name", "spec"}, {"kind", "reduced_model"}, {"base", channel()}}.dump(2));
+  const CliOutcome o = run_shell(work, "cd " + work.string() + " && env -u HOME -u CLOSURELAB_STORE OMP_NUM_THREADS=1 " +
+                                           std::string(CLOSURELAB_BINARY_DIR) + "/experiments/closurelab run spec.json --out out");
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("neither CLOSURELAB_STORE nor HOME is set"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find(".closurelab-store"), std::string::npos) << o.err;
+}

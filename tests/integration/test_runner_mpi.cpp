@@ -48,6 +48,12 @@ TEST(RunnerMpi, TwoRanksGiveTheSerialTableAndAReRunResumes) {
   ASSERT_EQ(serial.code, 0) << serial.err;
   const CliOutcome mpi = mpirun_closurelab(work, "run " + spec_arg + " --out " + (work / "mpi").string());
   ASSERT_EQ(mpi.code, 0) << mpi.err;
+  // The store summary comes from rank 0 alone (it used to be printed by every rank, interleaved).
+  std::size_t summaries = 0;
+  for (std::size_t at = mpi.err.find("reference store "); at != std::string::npos;
+       at = mpi.err.find("reference store ", at + 1))
+    ++summaries;
+  EXPECT_EQ(summaries, 1u) << mpi.err;
   const json a = read(work / "serial" / "ranks.json"), b = read(work / "mpi" / "ranks.json");
   EXPECT_EQ(without_timings(a), without_timings(b));
   for (const json& row : b.at("rows")) {

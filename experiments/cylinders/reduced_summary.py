@@ -15,17 +15,12 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "summaries"))
+from summary_util import get  # noqa: E402  (the summaries' helpers)
+
 
 def pct(x):
     return "—" if x is None or (isinstance(x, float) and math.isnan(x)) else "%.3f %%" % (100.0 * x)
-
-
-def get(d, *keys):
-    for k in keys:
-        if not isinstance(d, dict) or k not in d:
-            return None
-        d = d[k]
-    return d
 
 
 def row_line(r):

@@ -1,4 +1,6 @@
-// Experiment kind "reduced_model": reduced model vs references, errors and cost in one row.
+// Experiment kind "reduced_model": reduced model vs references, errors and cost in one row (with the two-pass rule
+// for a parameter rule under backward Euler; the sections and the row's ending shared with the 2D kinds are
+// reduced_sections.cpp).
 #include "experiments/kinds/reduced_model.hpp"
 
 #include <chrono>
@@ -156,21 +158,11 @@ class ReducedModel : public ExperimentKind {
             setup += seconds_since(t0);
             const MesoResult r1 = first.run();
             const auto t1 = std::chrono::steady_clock::now();
-            auto rule = reg.deconvolvers.create(configured, "/closure/deconvolver");
-            rule->setup(first.forward_operator());
-            const DeconvolutionResult chosen = rule->solve(first.deconvolution_data(), opt.noise_level);
+            two_pass_record = {{"rule", configured.at("rule")}, {"pass_1_status", row_status(r1.status)},
+                               {"pass_1_steps", r1.steps}};
+            deconvolver_cfg = choose_parameter_once(reg, configured, first.forward_operator(), first.deconvolution_data(),
+                                                    opt.noise_level, two_pass_record, "");
             loop += r1.wall_seconds + seconds_since(t1);
-            const std::string name = chosen.stats.parameter_name;
-            fixed = with_chosen_parameter(fixed, chosen.stats);
-            two_pass_record = {{"rule", configured.at("rule")},
-                               {"parameter", name},
-                               {"pass_1_parameter", configured.value(name, json())},
-                               {"pass_1_status", row_status(r1.status)},
-                               {"pass_1_steps", r1.steps},
-                               {"rule_status", row_status(chosen.status)},
-                               {"rule_message", chosen.stats.message},
-                               {"chosen", fixed.at(name)}};
-            deconvolver_cfg = fixed;
           }
           auto deconv = reg.deconvolvers.create(deconvolver_cfg, "/closure/deconvolver");
           auto quad = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
@@ -271,13 +263,8 @@ class ReducedModel : public ExperimentKind {
       }
       if (!t_star.empty()) row["transient"] = transient;
     }
-    add_reduced_timing(cost, timing, direct ? &direct->run : nullptr);
-    cost["repeats_identical"] = repeats_identical;
-    cost["peak_memory_mib"] = peak_memory_mib();
-    row["errors"] = errors;
-    row["cost"] = cost;
-    propagate_worst_status(row, reduced.deconvolution_issues,
-                           row.contains("direct_sph") ? &row["direct_sph"] : nullptr);
+    finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, reduced.deconvolution_issues,
+                       direct ? &direct->run : nullptr);
     row["profile"] = profile;
     return row;
   }

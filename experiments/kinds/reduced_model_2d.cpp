@@ -239,13 +239,8 @@ class ReducedModel2D : public ExperimentKind {
       }
       if (!transient.empty()) row["transient"] = transient;
     }
-    add_reduced_timing(cost, timing, direct ? &direct->run : nullptr);
-    cost["repeats_identical"] = repeats_identical;
-    cost["peak_memory_mib"] = peak_memory_mib();
-    row["errors"] = errors;
-    row["cost"] = cost;
-    propagate_worst_status(row, reduced.deconvolution_issues,
-                           row.contains("direct_sph") ? &row["direct_sph"] : nullptr);
+    finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, reduced.deconvolution_issues,
+                       direct ? &direct->run : nullptr);
     row["fields"] = fields;
     return row;
   }

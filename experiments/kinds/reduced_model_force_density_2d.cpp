@@ -135,20 +135,10 @@ class ReducedModelForceDensity2D : public ExperimentKind {
             const ForceDensity2DResult r1 = first.run();
             const auto t1 = std::chrono::steady_clock::now();
             two_pass_record = {{"rule", configured.at("rule")}, {"pass_1_status", row_status(r1.status)}};
-            const auto choose = [&](const ForwardOperator& op, const Eigen::VectorXd& data, const char* what) {
-              auto rule = reg.deconvolvers.create(configured, "/closure/deconvolver");
-              rule->setup(op);
-              const DeconvolutionResult c = rule->solve(data, opt.noise_level);
-              const json chosen = with_chosen_parameter(fixed, c.stats);
-              const std::string name = c.stats.parameter_name;
-              two_pass_record["parameter"] = name;
-              two_pass_record["pass_1_parameter"] = configured.value(name, json());
-              two_pass_record[what] = {{"chosen", chosen.at(name)}, {"rule_status", row_status(c.status)},
-                                       {"rule_message", c.stats.message}};
-              return chosen;
-            };
-            velocity_cfg = choose(first.velocity_operator(), first.free_vx(), "velocity");
-            density_cfg = choose(first.density_operator(), first.free_density(), "density");
+            velocity_cfg = choose_parameter_once(reg, configured, first.velocity_operator(), first.free_vx(),
+                                                 opt.noise_level, two_pass_record, "velocity");
+            density_cfg = choose_parameter_once(reg, configured, first.density_operator(), first.free_density(),
+                                                opt.noise_level, two_pass_record, "density");
             loop += r1.wall_seconds + seconds_since(t1);
           }
           auto dv = reg.deconvolvers.create(velocity_cfg, "/closure/deconvolver");
@@ -217,13 +207,8 @@ class ReducedModelForceDensity2D : public ExperimentKind {
                  {"probe_seconds", reduced.probe_seconds},
                  {"deconvolution_seconds", reduced.deconvolution_seconds},
                  {"deconvolution_matvecs", reduced.deconvolution_matvecs}};
-    add_reduced_timing(cost, timing, direct ? &direct->run : nullptr);
-    cost["repeats_identical"] = repeats_identical;
-    cost["peak_memory_mib"] = peak_memory_mib();
-    row["errors"] = errors;
-    row["cost"] = cost;
-    propagate_worst_status(row, reduced.deconvolution_issues,
-                           row.contains("direct_sph") ? &row["direct_sph"] : nullptr);
+    finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, reduced.deconvolution_issues,
+                       direct ? &direct->run : nullptr);
     row["fields"] = fields;
     return row;
   }

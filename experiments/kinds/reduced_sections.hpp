@@ -6,7 +6,9 @@
 
 #include "core/base/params.hpp"
 #include "core/base/repeated_timing.hpp"
+#include "core/base/registry.hpp"
 #include "core/closure/deconvolver.hpp"
+#include "core/closure/forward_operator.hpp"
 #include "core/reduced/meso_solver.hpp"
 
 namespace closurelab {
@@ -42,9 +44,19 @@ RepeatedReducedRuns repeat_reduced_run(const std::function<ReducedRunSeconds()>&
 // direct run and whether they are this run's).
 void add_reduced_timing(json& cost, const RepeatedReducedRuns& runs, const json* direct_run);
 
-// The two-pass rule's second deconvolver: `fixed` (a resolved deconvolver with rule fixed) with the parameter the
-// rule chose (`chosen`: its parameter_name and chosen_parameter; an integer parameter rounded).
-json with_chosen_parameter(json fixed, const DeconvolutionStats& chosen);
+// The two-pass rule's choice (pass 2's deconvolver): a deconvolver configured as `configured` (a resolved one with a
+// rule) bound to `op` picks its parameter once from `data`; returns `configured` with rule fixed and that parameter
+// (an integer one rounded), and records chosen, rule_status, rule_message under record[what] (in record itself when
+// `what` is empty) and the parameter's
+// name and configured value under record["parameter"], record["pass_1_parameter"].
+json choose_parameter_once(const Registry& registry, const json& configured, const ForwardOperator& op,
+                           const Eigen::VectorXd& data, double noise_level, json& record, const std::string& what);
+
+// The reduced kinds' last step: the repeated timing into `cost` (add_reduced_timing, with the direct run's record
+// `direct_run`), repeats_identical and the peak memory; `errors` and `cost` into the row; then the row's status the
+// worst of its parts (propagate_worst_status).
+void finish_reduced_row(json& row, json errors, json cost, const RepeatedReducedRuns& timing, bool repeats_identical,
+                        const DeconvolutionIssues& deconvolution_issues, const json* direct_run);
 
 // A reduced row's status, the worst of its parts: the reduced run's own (`status`, already in the row), then
 // numerical issues of the closure's deconvolutions (any: numerical_issue), then the direct

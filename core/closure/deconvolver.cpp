@@ -23,6 +23,21 @@ json DeconvolutionResult::to_json() const {
                {{"matvecs", cost.matvecs}, {"setup_seconds", cost.setup_seconds}, {"solve_seconds", cost.solve_seconds}}}};
 }
 
+Eigen::MatrixXd Deconvolver::solve_columns(const Eigen::MatrixXd& B, double noise_level,
+                                           std::vector<DeconvolutionResult>* results) const {
+  Eigen::MatrixXd X;
+  for (Eigen::Index k = 0; k < B.cols(); ++k) {
+    DeconvolutionResult r = solve(B.col(k), noise_level);
+    if (k == 0) X.resize(r.x.size(), B.cols());
+    X.col(k) = r.x;
+    if (results) {
+      r.x.resize(0);
+      results->push_back(std::move(r));
+    }
+  }
+  return X;
+}
+
 void check_solve_input(const ForwardOperator& A, const Eigen::VectorXd& b, double noise_level) {
   if (b.size() != A.rows())
     throw ConfigError("/rhs", "right-hand side has " + std::to_string(b.size()) + " entries but the operator has " +

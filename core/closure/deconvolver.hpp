@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/base/params.hpp"
 #include "core/base/status.hpp"
@@ -75,6 +76,12 @@ class Deconvolver {
   virtual DeconvolutionResult solve(const Eigen::VectorXd& b, double noise_level = 0.0) const = 0;
   // Visits the regularized family from most to least regularized (see the header comment).
   virtual void scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const = 0;
+  // The solve of every column of B: X.col(k) = solve(B.col(k), noise_level).x, each column's result (its x left
+  // empty) appended to `results` when given. For precomputing a closure that is linear in its data as a map (probing
+  // it on unit data): a strategy with a factorisation and a fixed parameter does it by matrix products (the same
+  // arithmetic as its one-column solve, to round-off), the default column by column.
+  virtual Eigen::MatrixXd solve_columns(const Eigen::MatrixXd& B, double noise_level = 0.0,
+                                        std::vector<DeconvolutionResult>* results = nullptr) const;
 };
 
 // Shared input checks: sizes and finiteness of b and δ (ConfigError naming what is wrong).

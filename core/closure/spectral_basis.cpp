@@ -71,4 +71,18 @@ Eigen::VectorXd SpectralBasis::synthesize(const Eigen::VectorXd& c) const {
   return x;
 }
 
+Eigen::MatrixXd SpectralBasis::coefficients(const Eigen::MatrixXd& b) const {
+  if (!kronecker_) return u_.transpose() * b;
+  Eigen::MatrixXd c(ux_.cols() * uy_.cols(), b.cols());
+  for (Eigen::Index k = 0; k < b.cols(); ++k) c.col(k) = coefficients(Eigen::VectorXd(b.col(k)));
+  return c;
+}
+
+Eigen::MatrixXd SpectralBasis::synthesize(const Eigen::MatrixXd& c) const {
+  if (!kronecker_) return v_ * c;
+  Eigen::MatrixXd x(vx_.rows() * vy_.rows(), c.cols());
+  for (Eigen::Index k = 0; k < c.cols(); ++k) x.col(k) = synthesize(Eigen::VectorXd(c.col(k)));
+  return x;
+}
+
 }  // namespace closurelab

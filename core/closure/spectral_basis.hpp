@@ -31,6 +31,8 @@ class SpectralBasis {
 
   Eigen::VectorXd coefficients(const Eigen::VectorXd& b) const;   // β = Uᵀ b
   Eigen::VectorXd synthesize(const Eigen::VectorXd& c) const;     // V c
+  Eigen::MatrixXd coefficients(const Eigen::MatrixXd& b) const;   // the same for every column
+  Eigen::MatrixXd synthesize(const Eigen::MatrixXd& c) const;
 
  private:
   Kind kind_ = Kind::svd;

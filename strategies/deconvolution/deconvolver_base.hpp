@@ -3,6 +3,7 @@
 // the scaling of badly scaled operators, and the final guards: an empty or non-finite x, or a nonzero x that fits
 // the data no better than x = 0 (‖b − A x‖ >= ‖b‖), is never `converged`.
 // A strategy implements its setup, its fixed-parameter solve and its scan.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -65,10 +66,73 @@ class DeconvolverBase : public Deconvolver {
       r = choose_by_rule(*this, b, rule_.rule, noise_level, rule_.safety,
                          lcurve_seminorm());  // through scan(): already unscaled
     }
+    finish_solve(r, b, noise_level, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    return r;
+  }
+
+  // Columns at once where the strategy offers it (solve_fixed_columns) for a fixed parameter on a well-scaled
+  // problem, with each column's norms from one product A X and the same final guards as solve(); else one solve
+  // per column.
+  Eigen::MatrixXd solve_columns(const Eigen::MatrixXd& B, double noise_level = 0.0,
+                                std::vector<DeconvolutionResult>* results = nullptr) const final {
+    require_setup();
+    bool batched = rule_.rule == ParameterRule::fixed && scale_exponent_ == 0;
+    for (Eigen::Index k = 0; k < B.cols() && batched; ++k) {
+      check_solve_input(*a_, B.col(k), noise_level);
+      batched = data_exponent(B.col(k)) == 0;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    FixedColumns fc;
+    if (batched) fc = solve_fixed_columns(B);
+    if (fc.x.cols() != B.cols() || fc.x.rows() != a_->cols()) return Deconvolver::solve_columns(B, noise_level, results);
+    const Eigen::MatrixXd residual = B - (a_->storage() == OperatorStorage::dense ? Eigen::MatrixXd(a_->dense() * fc.x)
+                                                                                  : apply_to_columns(fc.x));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
+                           static_cast<double>(std::max<Eigen::Index>(B.cols(), 1));
+    for (Eigen::Index k = 0; k < B.cols(); ++k) {
+      DeconvolutionResult r;
+      r.x = fc.x.col(k);
+      r.stats.residual_norm = robust_norm(residual.col(k));
+      r.stats.solution_norm = robust_norm(r.x);
+      r.stats.chosen_parameter = fc.parameter;
+      r.cost.matvecs = fc.matvecs_per_column + 1;
+      if (!fc.issue.empty()) {
+        r.status = DeconvolutionStatus::numerical_issue;
+        r.stats.message = fc.issue;
+      }
+      finish_solve(r, B.col(k), noise_level, seconds);
+      fc.x.col(k) = r.x;
+      if (results) {
+        r.x.resize(0);
+        results->push_back(std::move(r));
+      }
+    }
+    return std::move(fc.x);
+  }
+
+ protected:
+  // A fixed-parameter solve of many right-hand sides: x (empty where the strategy has nothing faster than one
+  // solve per column), its parameter, the products with A or Aᵀ one column costs, and an issue common to all.
+  struct FixedColumns {
+    Eigen::MatrixXd x;
+    double parameter = 0.0;
+    long matvecs_per_column = 0;
+    std::string issue;
+  };
+  virtual FixedColumns solve_fixed_columns(const Eigen::MatrixXd& /*B*/) const { return {}; }
+
+ private:
+  Eigen::MatrixXd apply_to_columns(const Eigen::MatrixXd& x) const {
+    Eigen::MatrixXd out(a_->rows(), x.cols());
+    for (Eigen::Index k = 0; k < x.cols(); ++k) out.col(k) = a_->apply(x.col(k));
+    return out;
+  }
+  // The statistics and guards every solve ends with: an x of the wrong size, non-finite, or no better than x = 0.
+  void finish_solve(DeconvolutionResult& r, const Eigen::VectorXd& b, double noise_level, double seconds) const {
     r.stats.rule = to_string(rule_.rule);
     r.stats.parameter_name = parameter_name_;
     r.cost.setup_seconds = setup_seconds_;
-    r.cost.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.cost.solve_seconds = seconds;
     if (r.x.size() != a_->cols()) {
       r.status = DeconvolutionStatus::numerical_issue;
       r.stats.message = name_ + " returned a solution of size " + std::to_string(r.x.size()) + " for " +
@@ -81,8 +145,9 @@ class DeconvolverBase : public Deconvolver {
                !(rule_.rule == ParameterRule::discrepancy && r.stats.residual_norm <= rule_.safety * noise_level)) {
       no_better_than_zero(r, b);  // (data that are all noise meet the discrepancy principle near x = 0: kept)
     }
-    return r;
   }
+
+ public:
 
   void scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const final {
     require_setup();

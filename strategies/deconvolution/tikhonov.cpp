@@ -10,6 +10,11 @@
 //             Cholesky/LU of A + α C per α.
 //   sparse    least_squares: Eigen's SparseQR (COLAMD) of the stacked [A; √α L] per α; paper: CHOLMOD (symbolic
 //             analysis once) or SparseLU of A + α C.
+//   dual      least_squares with C = I and a fixed α: x = Aᵀ (AAᵀ + αI)⁻¹ b, Eigen's Cholesky of the m × m matrix
+//             (m the data size) once at setup: for a wide A (m ≪ n: the 2D force-density model's coarse data on a
+//             finer reconstruction) a setup of O(m² n) instead of the SVD's, whose condition is 1 + ‖A‖²/α (the
+//             square of the stacked system's): refused as a numerical issue where its reciprocal estimate falls
+//             below 1e-11 (x then carries relative errors up to ~1e-5); rules need the spectral backend.
 //   auto      spectral for a dense or Kronecker A in the least-squares form (and for the paper form with C = I on a
 //             symmetric A), else dense or sparse as A is stored.
 // The least-squares solves never square the condition number of A (DESIGN.md §6); with rule fixed the stacked QR is
@@ -18,10 +23,12 @@
 // so A P = Q_top R), or trace((A + αC)⁻¹ A) from the paper form's factorization.
 // Difference operators follow the solution mesh (1D, or the Kronecker sum [I ⊗ L_x; L_y ⊗ I] on a tensor mesh);
 // they are not periodic.
-// One file above the project's 320-line guide: the two forms and three backends share one scan, one GCV and one
-// parameter schema (one class); the standard-form transformation, an idea of its own, is standard_form.cpp.
+// One file above the project's 320-line guide: the two forms and four backends share one scan, one GCV and one
+// parameter schema (one class); the standard-form transformation, an idea of its own, is standard_form.cpp, the
+// factorisations tikhonov_factorizations.hpp.
 #include <Eigen/CholmodSupport>
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <Eigen/SparseLU>
@@ -38,89 +45,16 @@
 #include "strategies/deconvolution/deconvolvers.hpp"
 #include "strategies/deconvolution/difference_regularizers.hpp"
 #include "strategies/deconvolution/standard_form.hpp"
+#include "strategies/deconvolution/tikhonov_factorizations.hpp"
 
 namespace closurelab {
 namespace {
 
-using SpMat = Eigen::SparseMatrix<double>;
-
-// CHOLMOD's factorization with its reciprocal condition estimate (min/max of diag(L), squared for LL'):
-// CHOLMOD only fails on a non-positive pivot, so a matrix that is singular to working precision (A'A + 1e-300 I
-// for a 12x12 Hilbert A) factorizes "successfully" into garbage; the estimate says so.
-class Cholmod : public Eigen::CholmodDecomposition<SpMat> {
- public:
-  double rcond() { return m_cholmodFactor ? cholmod_rcond(m_cholmodFactor, &cholmod()) : 0.0; }
-};
-
-// A factorization whose reciprocal condition number is below the unit roundoff solves with no correct digit.
-constexpr double singular_rcond = std::numeric_limits<double>::epsilon();
-
-// The least-squares form at one α as the stacked problem [A; √α L] x ≈ [b; 0] by QR: the stacked matrix is
-// A P = Q R (P the column permutation: pivoting in the dense QR, COLAMD in the sparse one), so RᵀR = AᵀA + α LᵀL
-// without forming it and R's condition number is the stacked matrix's, not its square.
-class StackedQr {
- public:
-  StackedQr(const Eigen::MatrixXd& a, const Eigen::MatrixXd& l, double alpha) : m_(a.rows()), n_(a.cols()) {
-    Eigen::MatrixXd s(a.rows() + l.rows(), a.cols());
-    s << a, std::sqrt(alpha) * l;
-    dense_ = std::make_unique<Eigen::ColPivHouseholderQR<Eigen::MatrixXd>>(s);
-  }
-  StackedQr(const SpMat& a, const SpMat& l, double alpha) : m_(a.rows()), n_(a.cols()) {
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(static_cast<size_t>(a.nonZeros() + l.nonZeros()));
-    for (int k = 0; k < a.outerSize(); ++k)
-      for (SpMat::InnerIterator it(a, k); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
-    const double root = std::sqrt(alpha);
-    for (int k = 0; k < l.outerSize(); ++k)
-      for (SpMat::InnerIterator it(l, k); it; ++it) t.emplace_back(a.rows() + it.row(), it.col(), root * it.value());
-    SpMat s(a.rows() + l.rows(), a.cols());
-    s.setFromTriplets(t.begin(), t.end());
-    s.makeCompressed();
-    sparse_ = std::make_unique<Eigen::SparseQR<SpMat, Eigen::COLAMDOrdering<int>>>(s);
-  }
-  // Empty when the factorization failed or R is singular (a zero pivot).
-  std::string failure() const {
-    if (sparse_ && sparse_->info() != Eigen::Success) return "sparse QR failed: " + sparse_->lastErrorMessage();
-    if (!(diagonal().minCoeff() > 0)) return std::string(dense_ ? "Householder QR" : "sparse QR") + ": R has a zero pivot";
-    return "";
-  }
-  // min |R_ii| / max |R_ii|: with column pivoting (dense) an estimate of 1/κ; with COLAMD (sparse) a cruder one,
-  // like CHOLMOD's min/max diag(L), but of the stacked matrix (unsquared).
-  double rcond() const {
-    const Eigen::VectorXd d = diagonal();
-    return d.size() == 0 ? 0.0 : d.minCoeff() / d.maxCoeff();
-  }
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(dense_ ? dense_->rows() : sparse_->rows());
-    rhs.head(b.size()) = b;
-    return dense_ ? Eigen::VectorXd(dense_->solve(rhs)) : Eigen::VectorXd(sparse_->solve(rhs));
-  }
-  // trace(A (AᵀA + α LᵀL)⁻¹ Aᵀ) = ‖R⁻ᵀ (A P)ᵀ‖²_F.
-  double influence_trace(const Eigen::MatrixXd& a) const {
-    Eigen::MatrixXd apt = (a * dense_->colsPermutation()).transpose();
-    dense_->matrixR().topLeftCorner(n_, n_).triangularView<Eigen::Upper>().transpose().solveInPlace(apt);
-    return apt.squaredNorm();
-  }
-  double influence_trace(const SpMat& a) const {
-    Eigen::MatrixXd apt = Eigen::MatrixXd(SpMat(a * sparse_->colsPermutation()).transpose());
-    const SpMat rt = SpMat(sparse_->matrixR().topLeftCorner(n_, n_)).transpose();
-    rt.triangularView<Eigen::Lower>().solveInPlace(apt);
-    return apt.squaredNorm();
-  }
-
- private:
-  Eigen::VectorXd diagonal() const {
-    if (dense_) return dense_->matrixR().diagonal().cwiseAbs();
-    return SpMat(sparse_->matrixR().topLeftCorner(n_, n_)).diagonal().cwiseAbs();
-  }
-  Eigen::Index m_, n_;
-  std::unique_ptr<Eigen::ColPivHouseholderQR<Eigen::MatrixXd>> dense_;
-  std::unique_ptr<Eigen::SparseQR<SpMat, Eigen::COLAMDOrdering<int>>> sparse_;
-};
+using namespace tikhonov_detail;
 
 class Tikhonov : public DeconvolverBase {
  public:
-  enum class Backend { automatic, spectral, dense, sparse };
+  enum class Backend { automatic, spectral, dense, sparse, dual };
   Tikhonov(RuleConfig rule, bool paper, int order, double alpha, Backend backend, double alpha_max, double alpha_min,
            int alpha_count)
       : DeconvolverBase("tikhonov", rule, "alpha"), paper_(paper), order_(order), alpha_(alpha), requested_(backend),
@@ -136,6 +70,8 @@ class Tikhonov : public DeconvolverBase {
     backend_ = requested_;
     fixed_qr_.reset();
     std_form_.reset();
+    dual_.reset();
+    if (backend_ == Backend::dual) return setup_dual(a);
     if (backend_ == Backend::automatic) {
       if (a.storage() != OperatorStorage::sparse && (paper_ ? order_ == 0 && symmetric_ : true))
         backend_ = Backend::spectral;
@@ -187,7 +123,10 @@ class Tikhonov : public DeconvolverBase {
     DeconvolutionResult r;
     const double alpha = fixed_alpha();
     std::string issue;
-    if (backend_ == Backend::spectral) {
+    if (backend_ == Backend::dual) {
+      r.x = dual_solution(b, issue);
+      r.cost.matvecs = 1;
+    } else if (backend_ == Backend::spectral) {
       if (std_form_) {
         r.x = std_form_->solution(std_form_->data(b), alpha);
       } else {
@@ -199,15 +138,41 @@ class Tikhonov : public DeconvolverBase {
       r.x = factored_solution(b, alpha, issue, true);
       r.cost.matvecs = paper_ ? 0 : 1;
     }
-    // An alpha that dwarfs ||A||^2 (||A|| in the paper form) gives x ~ A'b/alpha ~ 0 and leaves the residual at
-    // ||b||: a wrong scale, not a solution (alpha is absolute; the rules scan relative to ||A||^2).
-    if (issue.empty() && !(alpha <= 1e12 * scale_))
-      issue = "tikhonov: alpha = " + fmt(alpha_) + " is " + fmt(alpha / scale_) + " times " +
-              (paper_ ? "||A||" : "||A||^2") + " (= " + fmt(std::ldexp(scale_, (paper_ ? 1 : 2) * scale_exponent())) +
-              "): the regularization swamps the operator and x ~ 0; choose alpha on the scale of the operator or a rule";
+    if (issue.empty()) issue = swamped(alpha);
     set_issue(r, issue);
     finish_fixed(r, b, alpha);
     return r;
+  }
+  // Many right-hand sides by matrix products: the SVD's filter factors (C = I) or the dual system's factor.
+  FixedColumns solve_fixed_columns(const Eigen::MatrixXd& b) const override {
+    FixedColumns out;
+    const double alpha = fixed_alpha();
+    out.parameter = alpha;
+    if (backend_ == Backend::dual) {
+      out.x = dual_->solve_columns(*dual_a_, b);
+      out.matvecs_per_column = 1;
+      out.issue = dual_->issue();
+    } else if (backend_ == Backend::spectral && !std_form_) {
+      Eigen::MatrixXd c = basis_.coefficients(b);
+      Eigen::VectorXd phi(c.rows());
+      for (Eigen::Index i = 0; i < phi.size(); ++i) phi(i) = filter(basis_.sigma()(i), alpha);
+      c = phi.asDiagonal() * c;
+      out.x = basis_.synthesize(c);
+      out.matvecs_per_column = 2;
+      if (paper_ && basis_.sigma().minCoeff() + alpha <= 1e-14 * scale_) out.issue = indefinite_message(alpha);
+    } else {
+      return {};
+    }
+    if (out.issue.empty()) out.issue = swamped(alpha);
+    return out;
+  }
+  // An alpha that dwarfs ||A||^2 (||A|| in the paper form) gives x ~ A'b/alpha ~ 0 and leaves the residual at
+  // ||b||: a wrong scale, not a solution (alpha is absolute; the rules scan relative to ||A||^2).
+  std::string swamped(double alpha) const {
+    if (alpha <= 1e12 * scale_) return "";
+    return "tikhonov: alpha = " + fmt(alpha_) + " is " + fmt(alpha / scale_) + " times " +
+           (paper_ ? "||A||" : "||A||^2") + " (= " + fmt(std::ldexp(scale_, (paper_ ? 1 : 2) * scale_exponent())) +
+           "): the regularization swamps the operator and x ~ 0; choose alpha on the scale of the operator or a rule";
   }
   // Hansen's L-curve of general-form Tikhonov plots ‖Lx‖, the penalized seminorm.
   Seminorm lcurve_seminorm() const override {
@@ -224,6 +189,8 @@ class Tikhonov : public DeconvolverBase {
   }
 
   void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const override {
+    if (backend_ == Backend::dual)  // setup_dual refuses a rule; a direct scan of a fixed-alpha instance has none
+      throw ConfigError("/backend", "tikhonov: backend dual serves a fixed alpha and has no scan; use backend spectral");
     const auto grid = log_grid_descending(alpha_max_ * scale_, alpha_min_ * scale_, alpha_count_);
     const double m = static_cast<double>(op().rows());
     const bool want_gcv = rule().rule == ParameterRule::gcv;
@@ -315,6 +282,20 @@ class Tikhonov : public DeconvolverBase {
     Eigen::VectorXd c(beta.size());
     for (Eigen::Index i = 0; i < beta.size(); ++i) c(i) = filter(basis_.sigma()(i), alpha) * beta(i);
     return basis_.synthesize(c);
+  }
+  void setup_dual(const ForwardOperator& a) {
+    if (paper_) throw ConfigError("/backend", "backend dual serves the least_squares form");
+    if (order_ != 0) throw ConfigError("/backend", "backend dual serves regularizer identity (C = I)");
+    if (rule().rule != ParameterRule::fixed)
+      throw ConfigError("/backend", "backend dual serves a fixed alpha (rule fixed); the rules need backend spectral");
+    if (a.storage() != OperatorStorage::dense) a_dense_ = a.to_dense();
+    dual_a_ = a.storage() == OperatorStorage::dense ? &a.dense() : &a_dense_;  // a outlives the instance
+    dual_ = std::make_unique<DualSystem>(*dual_a_, fixed_alpha());
+    scale_ = dual_->norm2_squared();
+  }
+  Eigen::VectorXd dual_solution(const Eigen::VectorXd& b, std::string& issue) const {
+    issue = dual_->issue();
+    return dual_->solve_columns(*dual_a_, b);
   }
   std::unique_ptr<StackedQr> stacked_qr(double alpha) const {
     return backend_ == Backend::dense ? std::make_unique<StackedQr>(a_dense_, l_dense_, alpha)
@@ -416,6 +397,8 @@ class Tikhonov : public DeconvolverBase {
   SpMat a_sparse_;                          // sparse least_squares: A for the stacked QR
   Eigen::MatrixXd a_dense_, l_dense_;
   std::unique_ptr<StackedQr> fixed_qr_;     // the fixed α's factorization (rule fixed)
+  std::unique_ptr<DualSystem> dual_;        // backend dual: the factor of AAᵀ + αI
+  const Eigen::MatrixXd* dual_a_ = nullptr;  // backend dual: A (the operator's own dense storage, or a_dense_)
   SpMat c_, g_sparse_;                      // paper form: C and A
   Eigen::MatrixXd g_dense_, c_dense_;
   std::unique_ptr<Cholmod> cholmod_;        // factorize() mutates; see note in solve
@@ -438,9 +421,11 @@ ParamSchema tikhonov_schema() {
                        "spectral: filter factors for every alpha from one decomposition (C = I: SVD/eigen, Kronecker-aware; "
                        "a difference L, least_squares only: standard form + SVD, the generalized SVD); dense: QR of "
                        "[A; sqrt(alpha) L] per alpha (paper: Cholesky/LU of A + alpha C); sparse: the same by Eigen's "
-                       "SparseQR (paper: CHOLMOD/SparseLU); auto: spectral unless A is sparse or the paper form has a "
-                       "difference C or a non-symmetric A",
-                       {"auto", "spectral", "dense", "sparse"}),
+                       "SparseQR (paper: CHOLMOD/SparseLU); dual: x = A'(AA' + alpha I)^-1 b by Cholesky once (least_squares, "
+                       "C = I, rule fixed; for a wide A; condition 1 + ||A||^2/alpha, a numerical issue below a "
+                       "reciprocal 1e-11); auto: spectral unless A is sparse or the paper form has a difference C or a "
+                       "non-symmetric A",
+                       {"auto", "spectral", "dense", "sparse", "dual"}),
           number_param("alpha_max", 1.0, "largest alpha scanned by the rules, relative to ||A||^2 (||A|| paper form)", 0.0, {}, true),
           number_param("alpha_min", 1e-16, "smallest alpha scanned by the rules, relative likewise", 0.0, {}, true),
           integer_param("alpha_count", 61, "number of alphas in the rules' geometric scan", 3, 100000),
@@ -456,6 +441,7 @@ std::unique_ptr<Deconvolver> make_tikhonov(const json& p) {
   const auto backend = be == "spectral" ? Tikhonov::Backend::spectral
                        : be == "dense"  ? Tikhonov::Backend::dense
                        : be == "sparse" ? Tikhonov::Backend::sparse
+                       : be == "dual"   ? Tikhonov::Backend::dual
                                         : Tikhonov::Backend::automatic;
   return std::make_unique<Tikhonov>(RuleConfig::from_json(p), p.at("form").get<std::string>() == "paper",
                                     reg == "identity"           ? 0

@@ -2,8 +2,22 @@
 
 #include <algorithm>
 #include <cmath>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace closurelab {
+
+void retain_freed_memory() {
+#if defined(__GLIBC__)
+  static const bool done = [] {
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);  // blocks below 32 MiB (glibc's largest threshold) from the heap
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);   // and the heap not trimmed until 1 GiB of it is free
+    return true;
+  }();
+  (void)done;
+#endif
+}
 
 ParamSchema timing_schema() {
   const TimingPolicy d;
@@ -45,6 +59,7 @@ TimingStats timing_stats(std::vector<double> seconds) {
 }
 
 TimingStats repeat_until_stable(const std::function<double()>& run_once, const TimingPolicy& policy) {
+  retain_freed_memory();
   std::vector<double> seconds;
   double spent = 0.0;
   // The minimum before the last `window` runs: stable when those runs improved on it by at most `stability`.

@@ -43,6 +43,14 @@ struct TimingStats {
 // The statistics of a list of run times (the median of an even count is the mean of the middle two).
 TimingStats timing_stats(std::vector<double> seconds);
 
+// From the first repeated timing on (repeat_until_stable calls it), the process keeps the memory it frees for
+// reuse (glibc: mallopt's mmap threshold at 32 MiB, its largest, and the trim threshold at 1 GiB; elsewhere
+// nothing). glibc's defaults return blocks above a few MiB to the kernel on free, so
+// each repetition of a run that allocates tens of MiB (the 2D force-density model's maps: 30–40 MiB at n = 192)
+// paid the page faults of fresh memory again: 30 % of its time on this machine (results/cylinders/reduced). The
+// repetitions then measure the computation, as a process doing many such runs meets it; the first run still pays.
+void retain_freed_memory();
+
 // The stopping rule alone: calls `run_once` (which does the work and returns the seconds it took) until the
 // policy says stop (tested with made-up durations).
 TimingStats repeat_until_stable(const std::function<double()>& run_once, const TimingPolicy& policy);

@@ -168,6 +168,8 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
       const std::vector<std::pair<int, double>>& wx = wx_of_column[static_cast<std::size_t>(i)];
       const bool fluid = !fixed_[a];
       const double mu_a = scene.phase_viscosity.at(static_cast<std::size_t>(lattice.phase[a]));
+      // Particle a's own coefficients, summed over its pairs before they are interpolated once.
+      double own_visc = 0.0, own_px = 0.0, own_py = 0.0, own_cx = 0.0, own_cy = 0.0;
       for (const Offset& o : stencil) {
         const long bi = ((i + o.di) % lnx + lnx) % lnx, bj = ((j + o.dj) % lny + lny) % lny;
         const auto b = static_cast<std::size_t>(site[static_cast<std::size_t>(bj * lnx + bi)]);
@@ -176,19 +178,26 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
           const double mu_ab = pair_viscosity(
               mu_a, scene.phase_viscosity.at(static_cast<std::size_t>(lattice.phase[b])), scene.pair_viscosity_mean);
           const double c = mu_ab * o.F / (n0 * n0);
-          add_interp(visc, a, c);
+          own_visc += c;
           if (b_fluid) add_interp(visc, b, -c);
-          add_interp(press_x, a, -beta * o.F * o.qx);
+          own_px -= beta * o.F * o.qx;
           add_interp(press_x, b, -beta * o.F * o.qx);
-          add_interp(press_y, a, -beta * o.F * o.qy);
+          own_py -= beta * o.F * o.qy;
           add_interp(press_y, b, -beta * o.F * o.qy);
-          add_interp(cont_x, a, o.F * o.qx);  // ṅ_a = Σ_b F q_ab · (V_a − V_b), the solid's velocity zero
-          add_interp(cont_y, a, o.F * o.qy);
+          own_cx += o.F * o.qx;  // ṅ_a = Σ_b F q_ab · (V_a − V_b), the solid's velocity zero
+          own_cy += o.F * o.qy;
         }
         if (b_fluid) {
           add_interp(cont_x, b, -o.F * o.qx);
           add_interp(cont_y, b, -o.F * o.qy);
         }
+      }
+      if (fluid) {
+        add_interp(visc, a, own_visc);
+        add_interp(press_x, a, own_px);
+        add_interp(press_y, a, own_py);
+        add_interp(cont_x, a, own_cx);
+        add_interp(cont_y, a, own_cy);
       }
       if (fluid) add_interp(op_v, a, m);
       add_interp(op_n, a, 1.0);
@@ -239,19 +248,11 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
     for (int ry : slot_row) slot_of[static_cast<std::size_t>(ry)] = -1;
     slot_row.clear();
   }
-  Eigen::MatrixXd a_v = maps[op_v], a_n = maps[op_n];
-  viscous_ = std::move(maps[visc]);
-  pressure_x_ = std::move(maps[press_x]);
-  pressure_y_ = std::move(maps[press_y]);
-  continuity_x_ = std::move(maps[cont_x]);
-  continuity_y_ = std::move(maps[cont_y]);
   const Eigen::VectorXd inv_rho = rho_bar.cwiseInverse(), inv_psi = psi_sum.cwiseInverse();
-  for (auto* mat : {&viscous_, &pressure_x_, &pressure_y_}) *mat = inv_rho.asDiagonal() * *mat;  // in place
-  for (auto* mat : {&continuity_x_, &continuity_y_}) *mat = inv_psi.asDiagonal() * *mat;
+  for (Map k : {op_v, visc, press_x, press_y}) maps[k] = inv_rho.asDiagonal() * maps[k];  // in place
+  for (Map k : {op_n, cont_x, cont_y}) maps[k] = inv_psi.asDiagonal() * maps[k];
   body_x_ = body_x_.cwiseProduct(inv_rho);
   body_y_ = body_y_.cwiseProduct(inv_rho);
-  a_v = inv_rho.asDiagonal() * a_v;
-  a_n = inv_psi.asDiagonal() * a_n;
   mass_weight_ = rho_bar * coarse_.cell_area() / (scene.rho0 * scene.box.lx * scene.box.ly);
   fluid_area_per_particle_ = dx * dx / (scene.box.lx * scene.box.ly);
   // Free nodes: a fluid mass fraction of at least hold_fraction; the others are held and reported as the average
@@ -259,24 +260,29 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
   for (Eigen::Index n = 0; n < nc; ++n)
     if (fluid_mass[n] >= opt_.hold_fraction * rho_bar[n]) free_.push_back(static_cast<int>(n));
   if (free_.empty()) throw ConfigError("/solver/hold_fraction", "every coarse node is held: no node has fluid enough");
-  full_v_ = a_v;
-  full_n_ = a_n;
-  const auto free_rows = [&](const Eigen::MatrixXd& full) {
-    Eigen::MatrixXd out(static_cast<Eigen::Index>(free_.size()), full.cols());
-    for (std::size_t k = 0; k < free_.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = full.row(free_[k]);
-    return out;
-  };
   // The velocity's unknowns: the reconstruction nodes that some fluid particle's interpolation reads; the others
   // lie inside the solid, where the velocity is the known zero (left free they would be fixed by the
   // regularisation alone, and leak into the fluid particles next to the surface).
   for (Eigen::Index r = 0; r < nr; ++r)
-    if (a_v.col(r).cwiseAbs().maxCoeff() > 0.0) velocity_columns_.push_back(static_cast<int>(r));
-  const Eigen::MatrixXd a_v_free = free_rows(a_v);
-  Eigen::MatrixXd a_v_op(a_v_free.rows(), static_cast<Eigen::Index>(velocity_columns_.size()));
-  for (std::size_t k = 0; k < velocity_columns_.size(); ++k)
-    a_v_op.col(static_cast<Eigen::Index>(k)) = a_v_free.col(velocity_columns_[k]);
+    if (maps[op_v].col(r).cwiseAbs().maxCoeff() > 0.0) velocity_columns_.push_back(static_cast<int>(r));
+  // The operators: the free rows (and the velocity's unknowns) of A_v and A_n.
+  Eigen::MatrixXd a_v_op(static_cast<Eigen::Index>(free_.size()), static_cast<Eigen::Index>(velocity_columns_.size())),
+      a_n_op(static_cast<Eigen::Index>(free_.size()), nr);
+  for (std::size_t k = 0; k < free_.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    for (std::size_t c = 0; c < velocity_columns_.size(); ++c)
+      a_v_op(row, static_cast<Eigen::Index>(c)) = maps[op_v](free_[k], velocity_columns_[c]);
+    a_n_op.row(row) = maps[op_n].row(free_[k]);
+  }
   op_v_ = ForwardOperator::from_dense(std::move(a_v_op));
-  op_n_ = ForwardOperator::from_dense(free_rows(a_n));
+  op_n_ = ForwardOperator::from_dense(std::move(a_n_op));
+  full_v_ = std::move(maps[op_v]);
+  full_n_ = std::move(maps[op_n]);
+  viscous_ = std::move(maps[visc]);
+  pressure_x_ = std::move(maps[press_x]);
+  pressure_y_ = std::move(maps[press_y]);
+  continuity_x_ = std::move(maps[cont_x]);
+  continuity_y_ = std::move(maps[cont_y]);
   assembly_seconds_ = seconds_since(t0);
   try {
     velocity_.setup(op_v_);

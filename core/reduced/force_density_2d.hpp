@@ -125,12 +125,15 @@ class ForceDensitySolver2D {
   };
   static Interp bilinear_weights(const TensorMesh2D& periodic_mesh, const Vec2& q);
   bool deconvolve(Deconvolver& d, const Eigen::VectorXd& data, Eigen::VectorXd& x, std::string& issue);
+  // Every column of `data` at once (Deconvolver::solve_columns), the velocity's on every reconstruction node.
+  bool deconvolve_columns(Deconvolver& d, const Eigen::MatrixXd& data, Eigen::MatrixXd& x, std::string& issue);
   bool steady_solve(std::string& issue);
   double superficial_velocity(std::string& issue);
   Eigen::VectorXd on_free(const Eigen::VectorXd& full) const;  // the free nodes' entries of a coarse field
   // A state on the free nodes as reported on every node: held nodes by the average (`full`: every node's row of
   // the forward operator) of the reconstruction.
-  Eigen::VectorXd reported(const Eigen::VectorXd& state, Deconvolver& d, const Eigen::MatrixXd& full,
+  Eigen::VectorXd reported(const Eigen::VectorXd& state, Deconvolver& d,
+                           const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& full,
                            std::string& issue);
 
   const Scene& scene_;
@@ -141,12 +144,13 @@ class ForceDensitySolver2D {
   std::vector<Interp> interp_;
   std::vector<int> free_;                 // the evolved coarse nodes (the state's entries)
   std::vector<int> velocity_columns_;     // the reconstruction nodes some fluid particle reads (the velocity's unknowns)
-  Eigen::MatrixXd full_v_, full_n_;       // A_v and A_n on every coarse node (the operators: free rows only)
   std::vector<std::uint8_t> fixed_;
+  // The maps are row-major as assembled (a block row is contiguous there); the products with them are the same
+  // either way.
+  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajorMatrix full_v_, full_n_;        // A_v and A_n on every coarse node (the operators: free rows only)
   // Rates from the reconstruction (coarse nodes × reconstruction nodes), divided by ρ̄ for the momentum:
   // viscous (both components), pressure (x and y from δn), continuity (from V_x and V_y).
-  // Row-major as assembled (a block row is contiguous there); the products with them are the same either way.
-  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   RowMajorMatrix viscous_, pressure_x_, pressure_y_, continuity_x_, continuity_y_;
   Eigen::VectorXd body_x_, body_y_;   // Σ_fluid ψ m g / ρ̄
   Eigen::VectorXd mass_weight_;       // ρ̄ Δ² / (ρ0 L²): ⟨u⟩ = Σ mass_weight v̄ (the cell's momentum)

@@ -33,19 +33,31 @@ Eigen::VectorXd ForceDensitySolver2D::interpolate_to_particles(const Eigen::Vect
 
 bool ForceDensitySolver2D::deconvolve(Deconvolver& d, const Eigen::VectorXd& data, Eigen::VectorXd& x,
                                       std::string& issue) {
+  Eigen::MatrixXd one;
+  if (!deconvolve_columns(d, Eigen::MatrixXd(data), one, issue)) return false;
+  x = one.col(0);
+  return true;
+}
+
+bool ForceDensitySolver2D::deconvolve_columns(Deconvolver& d, const Eigen::MatrixXd& data, Eigen::MatrixXd& x,
+                                              std::string& issue) {
   const auto t0 = std::chrono::steady_clock::now();
-  const DeconvolutionResult r = d.solve(data, opt_.noise_level);
-  matvecs_ += r.cost.matvecs;
-  deconvolution_issues_.count(r);
+  std::vector<DeconvolutionResult> results;
+  Eigen::MatrixXd r = d.solve_columns(data, opt_.noise_level, &results);
+  for (const DeconvolutionResult& one : results) {
+    matvecs_ += one.cost.matvecs;
+    deconvolution_issues_.count(one);
+  }
   deconv_seconds_ += seconds_since(t0);
   if (&d == &velocity_) {  // on every reconstruction node: zero inside the solid
-    x = Eigen::VectorXd::Zero(recon_.size());
-    for (std::size_t k = 0; k < velocity_columns_.size(); ++k) x[velocity_columns_[k]] = r.x[static_cast<Eigen::Index>(k)];
+    x = Eigen::MatrixXd::Zero(recon_.size(), data.cols());
+    for (std::size_t k = 0; k < velocity_columns_.size(); ++k) x.row(velocity_columns_[k]) = r.row(static_cast<Eigen::Index>(k));
   } else {
-    x = r.x;
+    x = std::move(r);
   }
   if (!x.allFinite()) {
-    issue = "deconvolution returned non-finite values (" + r.stats.message + ")";
+    issue = "deconvolution returned non-finite values" +
+            (results.empty() || results.front().stats.message.empty() ? "" : " (" + results.front().stats.message + ")");
     return false;
   }
   return true;
@@ -84,17 +96,10 @@ bool ForceDensitySolver2D::steady_solve(std::string& issue) {
   // Σ n̄ ρ̄-weights = 0 bordering it: the rate does not see a uniform n̄ (a uniform pressure exerts no force on
   // the lattice), so M has that null direction.
   const auto t0 = std::chrono::steady_clock::now();
-  const Eigen::Index f = static_cast<Eigen::Index>(free_.size()), nr = recon_.size();
-  Eigen::MatrixXd xv(nr, f), xn(nr, f);
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(f), x;
-  for (Eigen::Index k = 0; k < f; ++k) {
-    e[k] = 1.0;
-    if (!deconvolve(velocity_, e, x, issue)) return false;
-    xv.col(k) = x;
-    if (!deconvolve(density_, e, x, issue)) return false;
-    xn.col(k) = x;
-    e[k] = 0.0;
-  }
+  const Eigen::Index f = static_cast<Eigen::Index>(free_.size());
+  const Eigen::MatrixXd unit = Eigen::MatrixXd::Identity(f, f);
+  Eigen::MatrixXd xv, xn;
+  if (!deconvolve_columns(velocity_, unit, xv, issue) || !deconvolve_columns(density_, unit, xn, issue)) return false;
   Eigen::VectorXd zero = Eigen::VectorXd::Zero(f), x0v, x0n;  // the closure's response to zero data (affine part)
   if (!deconvolve(velocity_, zero, x0v, issue) || !deconvolve(density_, zero, x0n, issue)) return false;
   // The blocks of M on every node (a product of the full map, no copy of it), then the free rows.
@@ -152,7 +157,7 @@ double ForceDensitySolver2D::superficial_velocity(std::string& issue) {
 }
 
 Eigen::VectorXd ForceDensitySolver2D::reported(const Eigen::VectorXd& state, Deconvolver& d,
-                                               const Eigen::MatrixXd& full, std::string& issue) {
+                                               const RowMajorMatrix& full, std::string& issue) {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(coarse_.size()), x;
   if (opt_.held_node_value == HeldNodeValue::reconstructed && free_.size() < static_cast<std::size_t>(coarse_.size())) {
     if (!deconvolve(d, state, x, issue)) return Eigen::VectorXd::Constant(coarse_.size(), std::nan(""));

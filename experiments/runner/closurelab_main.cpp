@@ -14,11 +14,13 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 #include "build_info.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/registry.hpp"
+#include "experiments/runner/command_options.hpp"
 #include "experiments/runner/deconvolve_command.hpp"
 #include "experiments/runner/export_command.hpp"
 #include "experiments/runner/run_command.hpp"
@@ -33,36 +35,47 @@ namespace {
 
 const char* const families = "kernel, deconvolver, quadrature, scene, experiment";
 
-void usage(std::ostream& os) {
-  os << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n"
-     << "usage:\n"
-     << "  closurelab list [FAMILY]                        families: " << families << "\n"
-     << "  closurelab run SPEC.json [--out DIR] [--jobs N] [--force] [--store DIR] [--shard i/N]\n"
-     << "                 [--set KEY=VALUE ...] [--dry-run]\n"
-     << "  mpirun -n K closurelab run SPEC.json [--out DIR] [--force] [--store DIR]\n"
-     << "  closurelab merge DIR                            the table of a run made in shards\n"
-     << "  closurelab store [--store DIR]                  the reference store's entries and size\n"
-     << "  closurelab export TABLE.json --csv [--out FILE]  a results table as CSV, one record per row\n"
-     << "  closurelab deconvolve --matrix A.mtx --rhs b.mtx [--x-true x.mtx] --method NAME [--param k=v ...]\n"
-     << "                        [--noise-level d] [--out x.mtx]\n"
-     << "  closurelab COMMAND --help                       the usage of one command\n";
+const CommandSpec& list_spec() {
+  static const CommandSpec spec{
+      "list", {{"FAMILY", false}},
+      std::string("  Prints the registered strategies with their parameters (name, type, default, range: meaning).\n") +
+          "  families: " + families,
+      {}, ""};
+  return spec;
 }
 
-const char* const merge_usage =
-    "usage: closurelab merge DIR\n"
-    "  Writes the table DIR/<name>.json of a run made with --out DIR --shard i/N (every i), as a single run would\n"
-    "  have written it. Every cell must be in DIR/cells; the missing ones are listed with the shards to run.\n"
-    "  Exit codes: 0 written, 1 a cell had failed or a write failed, 2 missing cells, bad input or the folder in use.\n";
+const CommandSpec& merge_spec() {
+  static const CommandSpec spec{
+      "merge", {{"DIR"}},
+      "  Writes the table DIR/<name>.json of a run made with --out DIR --shard i/N (every i), as a single run would\n"
+      "  have written it. Every cell must be in DIR/cells; the missing ones are listed with the shards to run.",
+      {},
+      "  Exit codes: 0 written, 1 a cell had failed or a write failed, 2 missing cells, bad input or the folder in use."};
+  return spec;
+}
 
-const char* const store_usage =
-    "usage: closurelab store [--store DIR]\n"
-    "  Lists the entries of the reference store (id, size, date, scene and what ended the run) and its total\n"
-    "  size. DIR defaults to $CLOSURELAB_STORE, else ~/.cache/closurelab/store. Remove the folder to empty it.\n";
+const CommandSpec& store_spec() {
+  static const CommandSpec spec{
+      "store", {},
+      "  Lists the entries of the reference store (id, size, date, scene and what ended the run) and its total\n"
+      "  size. Remove the folder to empty it.",
+      {store_option()}, ""};
+  return spec;
+}
 
-const char* const list_usage =
-    "usage: closurelab list [FAMILY]\n"
-    "  Prints the registered strategies with their parameters (name, type, default, range: meaning).\n";
-
+// One line per command, from the commands' own tables (their synopses), then how to get one command's usage.
+void top_usage(std::ostream& os, const Registry& registry) {
+  os << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n"
+     << "usage:\n";
+  for (const CommandSpec* c : {&list_spec(), &run_command_spec(), &merge_spec(), &store_spec(), &export_command_spec()}) {
+    std::istringstream lines(synopsis(*c));
+    for (std::string l; std::getline(lines, l);) os << "  " << l << "\n";
+  }
+  std::istringstream lines(synopsis(deconvolve_command_spec(registry)));
+  for (std::string l; std::getline(lines, l);) os << "  " << l << "\n";
+  os << "  closurelab COMMAND --help    the usage of one command\n"
+     << "  closurelab --version\n";
+}
 
 void print_params(const ParamSchema& params, const std::string& indent) {
   for (const auto& p : params) {
@@ -79,15 +92,11 @@ void print_params(const ParamSchema& params, const std::string& indent) {
 }
 
 int list_command(int argc, char** argv, const Registry& reg) {
-  if (wants_help(argc, argv)) {
-    std::cout << list_usage << "  families: " << families << "\n";
+  if (wants_help(list_spec(), argc, argv)) {
+    std::cout << usage(list_spec());
     return 0;
   }
-  if (argc > 3) {
-    std::cerr << "error: list takes at most one FAMILY, got '" << argv[3] << "'\n" << list_usage;
-    return 2;
-  }
-  const std::string want = argc > 2 ? argv[2] : "";
+  const std::string want = parse_command_line(list_spec(), argc, argv).positional(0);
   bool any = false;
   for (const FamilyBase* fam : reg.families()) {
     if (!want.empty() && want != fam->family_name()) continue;
@@ -119,24 +128,11 @@ int list_command(int argc, char** argv, const Registry& reg) {
 }
 
 int store_command(int argc, char** argv) {
-  if (wants_help(argc, argv)) {
-    std::cout << store_usage;
+  if (wants_help(store_spec(), argc, argv)) {
+    std::cout << usage(store_spec());
     return 0;
   }
-  std::string dir = default_reference_store_dir();
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--store") {
-      if (i + 1 >= argc || argv[i + 1][0] == '\0') {
-        std::cerr << "error: --store needs a folder name\n" << store_usage;
-        return 2;
-      }
-      dir = argv[++i];
-    } else {
-      std::cerr << "error: unknown argument '" << a << "'; valid: --store DIR, --help\n" << store_usage;
-      return 2;
-    }
-  }
+  const std::string dir = parse_command_line(store_spec(), argc, argv).value("--store", default_reference_store_dir());
   const ReferenceStore store(dir);
   std::cout << "reference store " << dir << "\n";
   const std::vector<StoreEntryInfo> entries = store.list();
@@ -155,17 +151,14 @@ int store_command(int argc, char** argv) {
 }
 
 int merge_command(int argc, char** argv, const Registry& registry) {
-  if (wants_help(argc, argv)) {
-    std::cout << merge_usage;
+  if (wants_help(merge_spec(), argc, argv)) {
+    std::cout << usage(merge_spec());
     return 0;
   }
-  if (argc != 3 || argv[2][0] == '-') {
-    std::cerr << "error: merge takes one folder DIR\n" << merge_usage;
-    return 2;
-  }
+  const std::string dir = parse_command_line(merge_spec(), argc, argv).positional(0);
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line.append(i ? " " : "").append(argv[i]);
-  return merge_shards(argv[2], registry, command_line);
+  return merge_shards(dir, registry, command_line);
 }
 
 }  // namespace
@@ -182,17 +175,17 @@ int stdout_checked(int rc) {
 }
 
 int closurelab_main(int argc, char** argv, const UserRegistration& register_user) {
-  if (argc < 2) {
-    usage(std::cerr);
-    return 2;
-  }
-  const std::string cmd = argv[1];
+  const std::string cmd = argc < 2 ? "" : argv[1];
   try {
     // One registry per process: the built-ins, then the user's entries (a name registered twice is a
     // std::logic_error naming it, exit 1).
     Registry registry;
     register_builtin_strategies(registry);
     if (register_user) register_user(registry);
+    if (argc < 2) {
+      top_usage(std::cerr, registry);
+      return 2;
+    }
     if (cmd == "list") return stdout_checked(list_command(argc, argv, registry));
     if (cmd == "run") return run_command(argc, argv, registry);
     if (cmd == "merge") return merge_command(argc, argv, registry);
@@ -200,7 +193,7 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
     if (cmd == "store") return stdout_checked(store_command(argc, argv));
     if (cmd == "export") return run_export_command(argc, argv);
     if (cmd == "--help" || cmd == "-h" || cmd == "help") {
-      usage(std::cout);
+      top_usage(std::cout, registry);
       return stdout_checked(0);
     }
     if (cmd == "--version") {
@@ -209,7 +202,10 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
     }
     std::cerr << "error: unknown command '" << cmd << "'; known: list, run, merge, deconvolve, store, export, --help, "
                  "--version\n";
-    usage(std::cerr);
+    top_usage(std::cerr, registry);
+    return 2;
+  } catch (const UsageError& e) {  // a bad invocation: the message, then the command's synopsis
+    std::cerr << "error: " << e.what() << "\n" << e.usage_lines();
     return 2;
   } catch (const ConfigError& e) {
     std::cerr << "error: " << e.what() << "\n";

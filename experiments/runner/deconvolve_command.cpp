@@ -1,5 +1,4 @@
-// `closurelab deconvolve --matrix A.mtx --rhs b.mtx [--x-true x.mtx] --method NAME [--param k=v ...]
-//                        [--noise-level d] [--out x.mtx]`
+// `closurelab deconvolve --matrix A.mtx --rhs b.mtx ...` (its options: the table deconvolve_command_spec).
 // Deconvolution of a user system read from Matrix Market files with any registered deconvolver (the same
 // strategies the experiments use; no second code path). Prints one JSON object: the resolved method, the
 // operator's size and storage, status, statistics, cost, the relative error when the truth is given, and the
@@ -21,6 +20,7 @@
 #include "core/closure/forward_operator.hpp"
 #include "core/io/matrix_market.hpp"
 #include "core/base/registry.hpp"
+#include "experiments/runner/command_options.hpp"
 
 namespace closurelab {
 
@@ -32,70 +32,57 @@ struct Options {
   double noise_level = 0.0;
 };
 
-const char* usage_text =
-    "usage: closurelab deconvolve --matrix A.mtx --rhs b.mtx [--x-true x.mtx] --method NAME [--param k=v ...]\n"
-    "                             [--noise-level d] [--out x.mtx]\n"
-    "  --noise-level d  absolute noise level ||b - b_exact||_2 for the discrepancy principle\n"
-    "  --param k=v      a deconvolver parameter; v is parsed as JSON when it can be (numbers, true/false), else a string\n";
-
 Options parse(int argc, char** argv, const Registry& registry) {
+  const ParsedArgs args = parse_command_line(deconvolve_command_spec(registry), argc, argv);
   Options o;
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw ConfigError(a, "missing value");
-      return argv[++i];
-    };
-    if (a == "--matrix") o.matrix = value();
-    else if (a == "--rhs") o.rhs = value();
-    else if (a == "--x-true") o.x_true = value();
-    else if (a == "--method") o.method = value();
-    else if (a == "--out") o.out = value();
-    else if (a == "--noise-level") {
-      const std::string v = value();
-      char* end = nullptr;
-      o.noise_level = std::strtod(v.c_str(), &end);
-      // strtod also reads hexadecimal ("0x10" = 16) and "inf"/"nan": a decimal number only.
-      const bool decimal = v.find_first_not_of("0123456789.eE+-") == std::string::npos;
-      if (!decimal || end == v.c_str() || *end != '\0' || !std::isfinite(o.noise_level) || o.noise_level < 0)
-        throw ConfigError("--noise-level", "expected a finite number >= 0, got '" + v + "'");
-    } else if (a == "--param") {
-      const std::string kv = value();
-      const auto eq = kv.find('=');
-      if (eq == std::string::npos || eq == 0) throw ConfigError("--param", "expected k=v, got '" + kv + "'");
-      const std::string k = kv.substr(0, eq), v = kv.substr(eq + 1);
-      if (k == "name") throw ConfigError("--param", "the method is chosen with --method, not --param name=...");
-      if (o.params.contains(k)) throw ConfigError("--param", "'" + k + "' is given twice");
-      json parsed;
-      try {
-        parsed = json::parse(v);
-      } catch (const json::exception&) {
-        parsed = v;
-      }
-      o.params[k] = parsed;
-    } else {
-      throw ConfigError(a, "unknown option; valid: --matrix, --rhs, --x-true, --method, --param, --noise-level, --out, --help");
+  o.matrix = args.value("--matrix");
+  o.rhs = args.value("--rhs");
+  o.x_true = args.value("--x-true");
+  o.method = args.value("--method");
+  o.out = args.value("--out");
+  if (args.has("--noise-level")) o.noise_level = std::strtod(args.value("--noise-level").c_str(), nullptr);
+  for (const std::string& kv : args.all("--param")) {
+    const auto eq = kv.find('=');
+    const std::string k = kv.substr(0, eq), v = kv.substr(eq + 1);
+    if (k == "name") throw ConfigError("--param", "the method is chosen with --method, not --param name=...");
+    if (o.params.contains(k)) throw ConfigError("--param", "'" + k + "' is given twice");
+    json parsed;
+    try {
+      parsed = json::parse(v);
+    } catch (const json::exception&) {
+      parsed = v;
     }
+    o.params[k] = parsed;
   }
-  if (o.matrix.empty()) throw ConfigError("--matrix", "required");
-  if (o.rhs.empty()) throw ConfigError("--rhs", "required");
-  if (o.method.empty()) throw ConfigError("--method", "required; known: " + registry.deconvolvers.known_names());
   return o;
 }
 
 }  // namespace
 
+CommandSpec deconvolve_command_spec(const Registry& registry) {
+  return {"deconvolve",
+          {},
+          "  Deconvolves the system A x = b with a registered deconvolver (the experiments' strategies) and prints\n"
+          "  one JSON object: the resolved method, status, statistics, cost, the relative error when the truth is\n"
+          "  given, and the solution (inline, or the file of --out).",
+          {{"--matrix", "A.mtx", "the operator A (Matrix Market, coordinate or array)", false, true},
+           {"--rhs", "b.mtx", "the data b (Matrix Market vector)", false, true},
+           {"--x-true", "x.mtx", "the true solution, for the relative error"},
+           {"--method", "NAME", "the deconvolver: " + registry.deconvolvers.known_names(), false, true},
+           {"--param", "k=v",
+            "a deconvolver parameter (closurelab list deconvolver); v is parsed as JSON when it can be\n"
+            "(numbers, true/false), else a string; repeatable",
+            true, false, ValueForm::key_value},
+           {"--noise-level", "d", "absolute noise level ||b - b_exact||_2 for the discrepancy principle", false, false,
+            ValueForm::number_nonneg},
+           {"--out", "x.mtx", "write the solution there (Matrix Market) instead of inline"}},
+          "  Exit codes: 0 solved, 1 a numerical failure or a write failed, 2 bad input."};
+}
+
 int run_deconvolve_command(int argc, char** argv, const Registry& registry) {
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--help" || a == "-h") {
-      std::cout << usage_text << "  methods: " << registry.deconvolvers.known_names()
-                << " (parameters: closurelab list deconvolver)\n";
-      return 0;
-    }
-    if (a == "--matrix" || a == "--rhs" || a == "--x-true" || a == "--method" || a == "--out" || a == "--param" ||
-        a == "--noise-level")
-      ++i;  // skip the option's value
+  if (wants_help(deconvolve_command_spec(registry), argc, argv)) {
+    std::cout << usage(deconvolve_command_spec(registry));
+    return 0;
   }
   try {
     const Options o = parse(argc, argv, registry);
@@ -161,8 +148,11 @@ int run_deconvolve_command(int argc, char** argv, const Registry& registry) {
       return 1;  // the result is printed, but it is not a solution
     }
     return 0;
+  } catch (const UsageError& e) {
+    std::cerr << "error: " << e.what() << "\n" << e.usage_lines();
+    return 2;
   } catch (const ConfigError& e) {
-    std::cerr << "error: " << e.what() << "\n" << usage_text;
+    std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const NumericalError& e) {
     std::cerr << "error: numerical failure: " << e.what() << "\n";

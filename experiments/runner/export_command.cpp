@@ -1,7 +1,6 @@
 #include "experiments/runner/export_command.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -9,16 +8,11 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "experiments/runner/command_options.hpp"
 
 namespace closurelab {
 
 namespace {
-
-const char* const export_usage =
-    "usage: closurelab export TABLE.json --csv [--out FILE]\n"
-    "  Writes the table as CSV (to stdout, or FILE): one record per row with id, label, status and every value\n"
-    "  of the row's params, errors and cost as a dotted column (errors.vs_averaged_direct_sph.all_nodes.max_rel).\n"
-    "  Exit codes: 0 written, 1 a write failed, 2 bad input.\n";
 
 // The leaves of `v` under `prefix` (objects descend; scalars and strings are leaves; arrays of scalars are
 // skipped unless short, which are written as JSON text, e.g. a list of snapshot times).
@@ -73,32 +67,25 @@ std::string table_to_csv(const json& table) {
   return os.str();
 }
 
+const CommandSpec& export_command_spec() {
+  static const CommandSpec spec{
+      "export",
+      {{"TABLE.json"}},
+      "  Writes the table as CSV (to stdout, or FILE): one record per row with id, label, status and every value\n"
+      "  of the row's params, errors and cost as a dotted column (errors.vs_averaged_direct_sph.all_nodes.max_rel).",
+      {{"--csv", "", "the format: CSV (the one format so far)", false, true},
+       {"--out", "FILE", "write the CSV there instead of to stdout"}},
+      "  Exit codes: 0 written, 1 a write failed, 2 bad input."};
+  return spec;
+}
+
 int run_export_command(int argc, char** argv) {
-  std::string table_file, out_file;
-  bool csv = false;
-  for (int i = 2; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
-      std::cout << export_usage;
-      return 0;
-    }
+  if (wants_help(export_command_spec(), argc, argv)) {
+    std::cout << usage(export_command_spec());
+    return 0;
   }
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--csv") {
-      csv = true;
-    } else if (a == "--out") {
-      if (i + 1 >= argc || argv[i + 1][0] == '\0') throw ConfigError("", "--out needs a file name");
-      out_file = argv[++i];
-    } else if (!a.empty() && a[0] == '-') {
-      throw ConfigError("", "unknown option '" + a + "'; valid: --csv, --out, --help");
-    } else if (table_file.empty()) {
-      table_file = a;
-    } else {
-      throw ConfigError("", "more than one table given ('" + table_file + "', '" + a + "')");
-    }
-  }
-  if (table_file.empty()) throw ConfigError("", "export needs a TABLE.json\n" + std::string(export_usage));
-  if (!csv) throw ConfigError("", "export needs a format: --csv (the one format so far)");
+  const ParsedArgs args = parse_command_line(export_command_spec(), argc, argv);
+  const std::string table_file = args.positional(0), out_file = args.value("--out");
   const std::string text = table_to_csv(read_json_file(table_file));
   if (out_file.empty()) {
     std::cout << text;

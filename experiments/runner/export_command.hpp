@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/base/params.hpp"
+#include "experiments/runner/command_options.hpp"
 
 namespace closurelab {
 
@@ -12,6 +13,8 @@ namespace closurelab {
 // order after the three leading ones; a row without a column has an empty cell.
 std::string table_to_csv(const json& table);
 
+// Its options (command_options.hpp).
+const CommandSpec& export_command_spec();
 int run_export_command(int argc, char** argv);
 
 }  // namespace closurelab

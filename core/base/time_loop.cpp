@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <numbers>
 #include <sstream>
 
@@ -144,13 +145,18 @@ void check_time_loop(const json& s, const std::string& path) {
     throw ConfigError(path + "/steady_tolerance",
                       "steady_tolerance " + s.at("steady_tolerance").dump() + " is above " + json(kMaxSteadyTolerance).dump() +
                           ": a change that large over a window cannot mean steady state");
+  // The test needs two windows (a change between window ends, the first at step W).
+  if (2 * s.at("steady_window").get<std::int64_t>() > s.at("max_steps").get<std::int64_t>())
+    throw ConfigError(path + "/steady_window", "steady_window " + s.at("steady_window").dump() +
+                                                   " needs at least twice as many steps to find steady state, more "
+                                                   "than max_steps = " + s.at("max_steps").dump());
   if (!s.contains("kappa")) return;
   const double reach = s.at("steady_window").get<double>() * s.at("kappa").get<double>();
   if (reach < 1.0) {
     std::ostringstream os;
     os << "steady_window " << s.at("steady_window").get<int>() << " steps at kappa " << s.at("kappa").get<double>()
        << " spans at most " << reach << " viscous times of the spacing (rho h^2 / mu): too short to show any "
-       << "relaxation, so it cannot mean steady state; use steady_window >= " << static_cast<long long>(std::ceil(1.0 / s.at("kappa").get<double>()))
+       << "relaxation, so it cannot mean steady state; use steady_window >= " << std::setprecision(15) << std::ceil(1.0 / s.at("kappa").get<double>())
        << " steps at this kappa";
     throw ConfigError(path + "/steady_window", os.str());
   }

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <numbers>
 #include <sstream>
 
 #include "core/base/errors.hpp"
@@ -136,6 +139,45 @@ void check_time_loop(const json& s, const std::string& path) {
   if (s.at("mode") == "target_time" && !(s.at("target_time").get<double>() <= s.at("max_time").get<double>()))
     throw ConfigError(path + "/target_time", "target_time " + s.at("target_time").dump() + " exceeds max_time " +
                                                  s.at("max_time").dump() + " (raise max_time to run that long)");
+  if (s.at("mode") != "steady") return;
+  const double tol = s.at("steady_tolerance").get<double>();
+  if (tol > kMaxSteadyTolerance)
+    throw ConfigError(path + "/steady_tolerance",
+                      "steady_tolerance " + s.at("steady_tolerance").dump() + " is above " + json(kMaxSteadyTolerance).dump() +
+                          ": a change that large over a window cannot mean steady state");
+  // The test needs two windows (a change between window ends, the first at step W).
+  if (2 * s.at("steady_window").get<std::int64_t>() > s.at("max_steps").get<std::int64_t>())
+    throw ConfigError(path + "/steady_window", "steady_window " + s.at("steady_window").dump() +
+                                                   " needs at least twice as many steps to find steady state, more "
+                                                   "than max_steps = " + s.at("max_steps").dump());
+  if (!s.contains("kappa")) return;
+  const double reach = s.at("steady_window").get<double>() * s.at("kappa").get<double>();
+  if (reach < 1.0) {
+    std::ostringstream os;
+    os << "steady_window " << s.at("steady_window").get<int>() << " steps at kappa " << s.at("kappa").get<double>()
+       << " spans at most " << reach << " viscous times of the spacing (rho h^2 / mu): too short to show any "
+       << "relaxation, so it cannot mean steady state; use steady_window >= " << std::setprecision(15) << std::ceil(1.0 / s.at("kappa").get<double>())
+       << " steps at this kappa";
+    throw ConfigError(path + "/steady_window", os.str());
+  }
+}
+
+double steady_distance_bound(const json& s, double spacings) {
+  const double x = std::numbers::pi * std::numbers::pi * s.at("steady_window").get<double>() *
+                   s.at("kappa").get<double>() / (spacings * spacings);
+  return s.at("steady_tolerance").get<double>() / -std::expm1(-x);
+}
+
+void check_steady_reach(const json& s, double spacings, const std::string& path) {
+  if (s.at("mode") != "steady" || !(spacings > 0.0)) return;
+  const double d = steady_distance_bound(s, spacings);
+  if (d <= kMaxSteadyDistance) return;
+  std::ostringstream os;
+  os << "steady_window " << s.at("steady_window").get<int>() << " steps at kappa " << s.at("kappa").get<double>()
+     << " with steady_tolerance " << s.at("steady_tolerance").get<double>() << " across " << spacings
+     << " spacings: a run called steady could still be " << d * 100 << " % from steady state (at least; at most "
+     << kMaxSteadyDistance * 100 << " % is allowed); lengthen the window or tighten the tolerance";
+  throw ConfigError(path + "/steady_window", os.str());
 }
 
 }  // namespace closurelab

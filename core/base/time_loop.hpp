@@ -55,7 +55,22 @@ TimeLoopResult run_time_loop(const SteppedModel& model, const TimeLoopOptions& o
 ParamSchema time_loop_schema(const TimeLoopOptions& defaults);
 // Reads those parameters from a resolved solver section into `options`.
 void read_time_loop(const json& resolved, TimeLoopOptions& options);
-// Cross-parameter check of a resolved section at JSON path `path`: target_time <= max_time.
+// Cross-parameter checks of a resolved section at JSON path `path`: target_time <= max_time, and in steady mode a
+// window that can mean steady (steady_window_reach below): the section's kappa bounds every model's step by
+// kappa·ρh²/μ_max ((5.22), h the model's spacing), so a window of W steps spans at most W·kappa viscous times of
+// the spacing; under one, no relaxation shows in the change and a run stops at any distance from steady state
+// (kappa = 1e-6: `converged` at 99 % error). The tolerance must be at most kMaxSteadyTolerance.
 void check_time_loop(const json& resolved, const std::string& path);
+
+constexpr double kMaxSteadyTolerance = 1e-2;
+constexpr double kMaxSteadyDistance = 1e-2;
+// What a steady test can guarantee, scene known: with the slowest mode relaxing like e^{-t/τ}, a change below
+// `tol` over a window of model time w leaves the state within tol/(1 − e^{−w/τ}) of steady (relative). With
+// w <= W·kappa·ρh²/μ_max and τ >= ρL²/(π²μ_max) (the Rayleigh quotient of a channel of width L = `spacings`·h
+// between walls), w/τ <= π²·W·kappa/spacings², so this returns a lower bound on that distance.
+double steady_distance_bound(const json& resolved, double spacings);
+// Refuses (ConfigError at `path`/steady_window) a steady section whose steady_distance_bound exceeds
+// kMaxSteadyDistance: its `converged` could be far from steady state.
+void check_steady_reach(const json& resolved, double spacings, const std::string& path);
 
 }  // namespace closurelab

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <mutex>
 #include <stdexcept>
 #include <utility>
@@ -62,12 +64,46 @@ bool read_dataset(hid_t group, const std::string& name, hid_t mem_type, std::vec
   return true;
 }
 
+// The end-of-file address the superblock declares (format spec §II.A; versions 0-3), or 0 when none is found.
+// HDF5 1.10's H5Fopen on a file cut short of it fails and leaks the file's identifiers, so that the library prints
+// "infinite loop closing library" and a line of E,E,E at exit: a truncated file is refused before it is opened.
+std::uint64_t declared_end_of_file(const std::string& file, std::uint64_t size) {
+  std::ifstream in(file, std::ios::binary);
+  static const unsigned char signature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  for (std::uint64_t at = 0; at + 64 <= size; at = at == 0 ? 512 : 2 * at) {
+    unsigned char b[64];
+    in.seekg(static_cast<std::streamoff>(at));
+    if (!in.read(reinterpret_cast<char*>(b), sizeof b)) return 0;
+    if (!std::equal(signature, signature + 8, b)) continue;
+    const int version = b[8];
+    const int offsets = version <= 1 ? b[13] : b[9];
+    if (version > 3 || (offsets != 4 && offsets != 8)) return 0;
+    // The end-of-file address: the third address after the fixed fields (base, free-space or extension, EOF).
+    const std::size_t fixed = version == 0 ? 24 : version == 1 ? 28 : 12;
+    const std::size_t pos = fixed + 2 * static_cast<std::size_t>(offsets);
+    std::uint64_t eof = 0;
+    for (int k = offsets - 1; k >= 0; --k) eof = (eof << 8) | b[pos + k];
+    return eof == ~std::uint64_t{0} ? 0 : at + eof;  // addresses are relative to the superblock's base
+  }
+  return 0;
+}
+
 Handle open_for_reading(const std::string& file) {
   silence_hdf5();
-  if (H5Fis_hdf5(file.c_str()) <= 0)
+  if (H5Fis_hdf5(file.c_str()) <= 0) {
+    H5Eclear2(H5E_DEFAULT);
     throw ConfigError("", "'" + file + "' is not a readable HDF5 file (missing, truncated or another format)");
+  }
+  std::error_code ec;
+  const std::uint64_t size = std::filesystem::file_size(file, ec);
+  if (const std::uint64_t eof = ec ? 0 : declared_end_of_file(file, size); eof > size)
+    throw ConfigError("", "'" + file + "' is truncated: it has " + std::to_string(size) + " bytes, its superblock declares " +
+                              std::to_string(eof));
   Handle f(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (!f.ok()) throw ConfigError("", "cannot open HDF5 file '" + file + "'");
+  if (!f.ok()) {
+    H5Eclear2(H5E_DEFAULT);
+    throw ConfigError("", "cannot open HDF5 file '" + file + "' (truncated or corrupt?)");
+  }
   return f;
 }
 

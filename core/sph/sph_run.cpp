@@ -1,8 +1,10 @@
 #include "core/sph/sph_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
+#include "core/base/errors.hpp"
 #include "core/sph/sph_engine.hpp"
 
 namespace closurelab {
@@ -99,6 +101,22 @@ SphRunOptions sph_run_options_from(const json& s) {
   o.kappa = s.at("kappa").get<double>();
   read_time_loop(s, o);
   return o;
+}
+
+void check_run_can_finish(const Scene& scene, const json& s, const std::string& path) {
+  if (s.at("mode") != "target_time") return;
+  const double dx = scene.dx;
+  double dt = scene.rho0 * dx * dx / scene.max_viscosity();
+  if (scene.sound_speed > 0.0) dt = std::min(dt, dx / scene.sound_speed);
+  dt *= s.at("kappa").get<double>();
+  const double steps = s.at("target_time").get<double>() / dt;
+  const auto max_steps = s.at("max_steps").get<std::int64_t>();
+  if (!(steps > static_cast<double>(max_steps))) return;
+  std::ostringstream os;
+  os << "target_time " << s.at("target_time").get<double>() << " needs at least " << steps << " steps of at most dt = "
+     << dt << ", more than max_steps = " << max_steps << ": the run could only give up; shorten target_time or "
+     << "raise max_steps";
+  throw ConfigError(path + "/target_time", os.str());
 }
 
 }  // namespace closurelab

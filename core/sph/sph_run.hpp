@@ -43,5 +43,9 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& particles, const
 // SphRunOptions{}'s (one source), and sph_run_options_from(resolved defaults) == SphRunOptions{} (tested).
 ParamSchema sph_solver_schema();
 SphRunOptions sph_run_options_from(const json& resolved_solver);
+// Refuses (ConfigError at `path`/target_time) a target_time run that cannot reach its target within max_steps:
+// the step is at most kappa·min(dx/c, rho dx²/mu_max) (the particles at rest; it only shrinks as they move), so
+// it needs at least target_time / that steps. `path` is the solver section's JSON path.
+void check_run_can_finish(const Scene& scene, const json& resolved_solver, const std::string& path);
 
 }  // namespace closurelab

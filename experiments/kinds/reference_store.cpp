@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -17,6 +18,7 @@
 
 #include "core/base/json_reader.hpp"
 #include "core/io/h5part.hpp"
+#include "experiments/kinds/store_entry_lock.hpp"
 #include "experiments/runner/provenance.hpp"
 
 namespace closurelab {
@@ -28,7 +30,12 @@ namespace {
 constexpr std::uint64_t fnv_offset = 14695981039346656037ull, fnv_prime = 1099511628211ull;
 const char* const payload_name = "particles.h5part";
 const char* const entry_name = "entry.json";
-constexpr int entry_format = 1;
+// Format 2: the metadata (key, run record, payload size and checksum, provenance) is inside a checksum of its
+// own, so an edited status or step count is not reused; format-1 entries had none and are recomputed.
+constexpr int entry_format = 2;
+// A temporary folder older than this belongs to a writer that died (an entry is written in seconds, after the
+// run): it is removed and never counted.
+constexpr auto stale_temporary_age = std::chrono::hours(1);
 
 std::string hex16(std::uint64_t v) {
   char buf[17];
@@ -36,32 +43,27 @@ std::string hex16(std::uint64_t v) {
   return buf;
 }
 
-// An exclusive flock on DIR/<id>.lock for the lifetime of the object. Locks of separate open() calls
-// exclude each other, between threads of one process as between processes; the kernel drops the lock of a
-// process that dies. The lock files stay (removing one would race with a process about to lock it).
-class EntryLock {
- public:
-  EntryLock(const fs::path& file, const std::string& id) {
-    fd_ = ::open(file.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
-    if (fd_ < 0) throw std::runtime_error("reference store: cannot open lock file '" + file.string() + "': " + std::strerror(errno));
-    if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
-    std::cerr << "reference store: entry " << id << " is being computed by another cell or process; waiting\n";
-    while (::flock(fd_, LOCK_EX) != 0)
-      if (errno != EINTR) {
-        ::close(fd_);
-        throw std::runtime_error("reference store: cannot lock '" + file.string() + "': " + std::strerror(errno));
-      }
-  }
-  EntryLock(const EntryLock&) = delete;
-  EntryLock& operator=(const EntryLock&) = delete;
-  ~EntryLock() {
-    ::flock(fd_, LOCK_UN);
-    ::close(fd_);
-  }
+// The checksum of an entry's metadata: the FNV-1a of its dump without the checksum itself.
+std::string meta_checksum(json meta) {
+  meta.erase("meta_fnv1a64");
+  return hex16(fnv1a64(meta.dump()));
+}
 
- private:
-  int fd_ = -1;
-};
+// An entry's folder name: 16 lowercase hex digits (store_entry_id); anything else in the store (a lock file
+// that is a folder, a run's cells/ folder put there by mistake, temporaries) is not an entry.
+bool is_entry_name(const std::string& name) {
+  return name.size() == 16 && std::all_of(name.begin(), name.end(), [](char c) {
+           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+         });
+}
+
+bool is_temporary_name(const std::string& name) { return name.rfind(".tmp-", 0) == 0; }
+
+bool is_stale(const fs::path& p) {
+  std::error_code ec;
+  const auto t = fs::last_write_time(p, ec);
+  return !ec && fs::file_time_type::clock::now() - t > stale_temporary_age;
+}
 
 void sync_path(const fs::path& p) {
   const int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC);
@@ -76,6 +78,10 @@ std::uintmax_t folder_bytes(const fs::path& dir) {
   for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
        it.increment(ec)) {
     std::error_code e2;
+    if (it.depth() == 0 && is_temporary_name(it->path().filename().string())) {  // a writer's, not the store's
+      it.disable_recursion_pending();
+      continue;
+    }
     if (it->is_regular_file(e2)) total += it->file_size(e2);
   }
   return total;
@@ -113,8 +119,12 @@ bool ReferenceStore::try_read(const std::string& id, const json& key, StoredRefe
   std::string problem;
   try {
     const json meta = read_json_file_guarded((entry / entry_name).string());
-    if (meta.value("format", 0) != entry_format) throw std::runtime_error("unknown entry format");
-    if (meta.at("key") != key) {
+    const int format = meta.value("format", 0);
+    if (format == 1) throw std::runtime_error("written by an older closurelab (format 1: no checksum of its run record)");
+    if (format != entry_format) throw std::runtime_error("unknown entry format");
+    if (meta_checksum(meta) != meta.value("meta_fnv1a64", "")) {
+      problem = "its entry.json does not match its checksum (edited?)";
+    } else if (meta.at("key") != key) {
       problem = "it holds another key (a hash collision)";
     } else {
       const fs::path payload = entry / payload_name;
@@ -141,7 +151,7 @@ bool ReferenceStore::try_read(const std::string& id, const json& key, StoredRefe
   }
   std::cerr << "reference store: entry " << entry.string() << " is not usable (" << problem
             << "); removing it and recomputing\n";
-  fs::remove_all(entry, ec);
+  fs::remove_all(entry, ec);  // fails harmlessly on a read-only store
   return false;
 }
 
@@ -149,8 +159,12 @@ void ReferenceStore::write(const std::string& id, const json& key, const StoredR
   static std::atomic<long> counter{0};
   // Leftovers of an interrupted write of this entry (we hold its lock: nobody else is writing it).
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir_, ec))
-    if (e.path().filename().string().rfind(".tmp-" + id + "-", 0) == 0) fs::remove_all(e.path(), ec);
+  // Those of dead writers of other entries too (older than stale_temporary_age).
+  for (const auto& e : fs::directory_iterator(dir_, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(".tmp-" + id + "-", 0) == 0 || (is_temporary_name(name) && is_stale(e.path())))
+      fs::remove_all(e.path(), ec);
+  }
   const fs::path tmp = dir_ / (".tmp-" + id + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   try {
     fs::create_directories(tmp);
@@ -167,6 +181,7 @@ void ReferenceStore::write(const std::string& id, const json& key, const StoredR
                               {"bytes", fs::file_size(tmp / payload_name)},
                               {"fnv1a64", hex16(fnv1a64_file(tmp / payload_name))}}},
                  {"computed_by", computed_by}};
+    meta["meta_fnv1a64"] = meta_checksum(meta);
     {
       std::ofstream out(tmp / entry_name, std::ios::binary);
       out << meta.dump(1) << "\n";
@@ -186,12 +201,25 @@ void ReferenceStore::write(const std::string& id, const json& key, const StoredR
 
 StoredReference ReferenceStore::get_or_compute(const json& key, const std::function<StoredReference()>& compute) {
   const std::string id = store_entry_id(key);
-  try {
-    fs::create_directories(dir_);
-  } catch (const std::exception& e) {
-    throw std::runtime_error("reference store: cannot create the folder '" + dir_.string() + "': " + e.what());
+  std::error_code ec;
+  if (!fs::is_directory(dir_, ec) && !fs::create_directories(dir_, ec)) {
+    std::cerr << "reference store: cannot create the folder '" << dir_.string() << "': " << ec.message()
+              << "; computing without the store\n";
+    StoredReference ref = compute();
+    ref.store = {{"entry", id}, {"reused", false}, {"stored", false}};
+    return ref;
   }
   EntryLock lock(dir_ / (id + ".lock"), id);
+  if (lock.read_only()) {
+    std::cerr << "reference store: '" << dir_.string() << "' is read-only; reading entry " << id
+              << " without its lock" << (force_ ? " (--force cannot recompute into it)" : "") << "\n";
+    StoredReference ref;
+    if (!force_ && try_read(id, key, ref)) return ref;
+    std::cerr << "reference store: entry " << id << " is not in the read-only store; computing it, not stored\n";
+    ref = compute();
+    ref.store = {{"entry", id}, {"reused", false}, {"stored", false}};
+    return ref;
+  }
   bool recompute = false;
   if (force_) {
     std::lock_guard<std::mutex> g(refreshed_mutex_);
@@ -218,7 +246,8 @@ std::vector<StoreEntryInfo> ReferenceStore::list() const {
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir_, ec)) {
     const std::string name = e.path().filename().string();
-    if (!e.is_directory() || name.empty() || name[0] == '.') continue;
+    std::error_code e2;
+    if (!is_entry_name(name) || !e.is_directory(e2) || e.is_symlink(e2)) continue;
     StoreEntryInfo info;
     info.id = name;
     info.bytes = folder_bytes(e.path());

@@ -8,12 +8,16 @@
 // Layout: DIR/<id>/ with id = 16 hex digits of the 64-bit FNV-1a hash of the key's canonical dump (keys
 // sorted); inside, particles.h5part (the snapshots, then the final state: H5Part layout, core/io/h5part.hpp)
 // and entry.json (the full key, compared on read, so a hash collision is harmless; the run's record; the
-// payload's size and FNV-1a checksum; the provenance of the run that computed it).
+// payload's size and FNV-1a checksum; the provenance of the run that computed it; a checksum of all of these, so
+// an edited status or step count is not reused). Only folders named by 16 hex digits are entries.
 // Safety: an entry is written to a temporary folder DIR/.tmp-<id>-... and renamed, so a half-written entry is
 // never visible; on read the key, the payload's size and checksum and the HDF5 contents are checked, and a
 // corrupt or truncated entry is reported on stderr, removed and recomputed. Cross-process (and cross-thread):
 // a lock file DIR/<id>.lock (flock) is held while an entry is read or computed, so two cells or processes
-// needing the same reference compute it once (the second waits, then reads it).
+// needing the same reference compute it once (the second waits, then reads it). A store that cannot be written
+// (a shared precomputed store on a read-only mount) is read without the lock, and an entry missing there is
+// computed and not stored, with a note. Temporaries of writers that died are not counted, and removed by the
+// next write once an hour old.
 #include <cstdint>
 #include <filesystem>
 #include <functional>

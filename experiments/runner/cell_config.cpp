@@ -1,6 +1,7 @@
 #include "experiments/runner/cell_config.hpp"
 
 #include <cmath>
+#include <sstream>
 
 #include "core/base/errors.hpp"
 
@@ -18,7 +19,26 @@ void check_keys(const json& cell, const std::string& path, const std::vector<std
 
 std::unique_ptr<Scene> build_scene(const json& cell, const std::string& path, const Registry& reg, json* resolved) {
   if (!cell.contains("scene")) throw ConfigError(path + "/scene", "missing scene; known: " + reg.scenes.known_names());
-  return reg.scenes.create(cell.at("scene"), path + "/scene", resolved);
+  auto scene = reg.scenes.create(cell.at("scene"), path + "/scene", resolved);
+  check_scene_scales(*scene, path + "/scene");
+  return scene;
+}
+
+void check_scene_scales(const Scene& s, const std::string& path) {
+  constexpr double lo = 1e-100, hi = 1e100;
+  const auto check = [&](const std::string& key, const std::string& what, double v) {
+    if (v >= lo && v <= hi) return;
+    std::ostringstream os;
+    os << what << " is " << v << ", outside [1e-100, 1e100]: the engine's products of such scales (pressure, "
+       << "viscous force, time step) leave the normal double range, so velocities would lose their digits; "
+       << "rescale the problem (model units: rho = mu = L_y = 1)";
+    throw ConfigError(path + key, os.str());
+  };
+  check(s.params.contains("rho") ? "/rho" : "", "the density", s.rho0);
+  for (double mu : s.phase_viscosity) check(s.params.contains("mu") ? "/mu" : "", "a viscosity", mu);
+  check("", "the lattice spacing", s.dx);
+  if (s.sound_speed != 0.0) check("", "the sound speed", s.sound_speed);
+  check("", "the viscous time of the spacing rho dx^2 / mu_max", s.rho0 * s.dx * s.dx / s.max_viscosity());
 }
 
 std::unique_ptr<AveragingKernel> build_kernel(const json& cell, const std::string& path, const Registry& reg,

@@ -2,6 +2,7 @@
 // another spec (same scene, kernel and solver), listed with its size by `closurelab store`, opens in h5py as
 // it is, is recomputed after damage, and is computed once when two processes need it at the same time.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "core/base/params.hpp"
 #include "experiments/kinds/reference_store.hpp"
@@ -88,4 +89,41 @@ TEST(ReferenceStoreCli, TwoProcessesNeedingTheSameReferenceComputeItOnce) {
   }
   EXPECT_EQ(computed, 1);
   EXPECT_EQ(closurelab::ReferenceStore(store).list().size(), 1u);
+}
+
+// A shared store on a read-only mount (issue 25): its entries are reused without taking a lock, a missing one is
+// computed (not stored) with a note, and the run exits 0. Needs a read-only folder: a private read-only bind
+// mount (root with unshare), else the permission bits (a non-root user).
+TEST(ReferenceStoreCli, AReadOnlyStoreIsReadWithoutItsLock) {
+  const fs::path work = fresh_work_folder("store_read_only"), store = work / "store";
+  run_tiny(work, "first", store);
+  for (const auto& e : fs::directory_iterator(store))  // a precomputed store copied without its lock files
+    if (e.path().extension() == ".lock") fs::remove(e.path());
+  std::string wrap;
+  if (::geteuid() == 0) {
+    if (run_shell(work, "unshare -m true").code != 0) GTEST_SKIP() << "root without unshare: no read-only folder";
+    wrap = "unshare -m sh -c 'mount --bind " + store.string() + " " + store.string() + " && mount -o remount,bind,ro " +
+           store.string() + " " + store.string() + " && exec \"$0\" \"$@\"' ";
+  } else {
+    fs::permissions(store, fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write,
+                    fs::perm_options::remove);
+  }
+  write_text(work / "second.spec.json", tiny("second").dump());
+  json moved = tiny("third");
+  moved["base"]["solver"]["target_time"] = 0.04;
+  write_text(work / "third.spec.json", moved.dump());
+  const auto run = [&](const std::string& name) {
+    return run_shell(work, wrap + std::string(CLOSURELAB_BINARY_DIR) + "/experiments/closurelab run " +
+                               (work / (name + ".spec.json")).string() + " --out " + (work / name).string() +
+                               " --store " + store.string());
+  };
+  const CliOutcome reuse = run("second");
+  EXPECT_EQ(reuse.code, 0) << reuse.err;
+  EXPECT_NE(reuse.err.find("read-only"), std::string::npos) << reuse.err;
+  const json row = json::parse(read_text(work / "second" / "second.json")).at("rows").at(0);
+  EXPECT_TRUE(row.at("direct_sph").at("reference_store").at("reused").get<bool>()) << row.dump();
+  const CliOutcome missing = run("third");
+  EXPECT_EQ(missing.code, 0) << missing.err;
+  EXPECT_NE(missing.err.find("not stored"), std::string::npos) << missing.err;
+  fs::permissions(store, fs::perms::owner_write, fs::perm_options::add);
 }

@@ -195,6 +195,7 @@ void register_scenes(Registry& r) {
                  const double l1 = s->wall_lo, l2 = s->wall_hi, rho = s->rho0, g = p.at("g").get<double>(),
                               mu = s->phase_viscosity[0];
                  s->force_x = [g](double) { return g; };
+                 s->uniform_force_x = g;
                  s->analytic_vx = [=](double y) { return poiseuille_velocity(y, l1, l2, rho, g, mu); };
                  finish_sound_speed(*s);
                  return s;

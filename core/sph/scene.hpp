@@ -83,6 +83,10 @@ struct Scene {
   // The analytic steady velocity v_x(y) where known (empty otherwise), and its peak.
   std::function<double(double y)> analytic_vx;
   double analytic_peak = 0.0;
+  // A channel driven by a uniform force g along x (poiseuille-uniform): its analytic profile is a parabola, so the
+  // direct SPH's effective walls are the roots of a parabola fitted to the particles, and its convective stress has
+  // the closed form of App. B (both reported by sph_validation).
+  std::optional<double> uniform_force_x;
   // Scenes whose steady solution is a single sine mode v_x = amplitude · sin(wavenumber · y) (kolmogorov) say
   // so: the reduced model then compares its steady amplitude with the Landweber prediction (DESIGN.md §5).
   struct SineMode {

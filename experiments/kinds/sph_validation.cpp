@@ -251,7 +251,7 @@ class SphValidation : public ExperimentKind {
     for (int n = 0; n < nn; ++n)
       if (node_interior[n]) tc_max = std::max(tc_max, std::abs(f.convective.at("xx")[n]));
     errors["convective_xx_interior_max"] = tc_max;
-    if (scene->name == "poiseuille-uniform") {
+    if (scene->uniform_force_x) {
       // Effective walls: the roots of the parabola fitted to the particle velocities; and App. B.
       const ParabolaFit fit = fit_parabola(py, pv);
       const double w = l2 - l1;
@@ -261,7 +261,7 @@ class SphValidation : public ExperimentKind {
                                {"centre_overprediction", (fit.peak - peak) / peak},
                                {"expected_2dx_over_w", 2.0 * scene->dx / w}};
       double tcb = 0.0, tc_err = 0.0;
-      const double rho = scene->rho0, g = scene->params.at("g").get<double>(), mu = scene->phase_viscosity[0];
+      const double rho = scene->rho0, g = *scene->uniform_force_x, mu = scene->phase_viscosity[0];
       for (int n = 0; n < nn; ++n) {
         if (!node_interior[n]) continue;
         const double b = -rho * poiseuille_convective_stress_b(mesh.node(n).y(), l1, l2, rho, g, mu, kernel->eta());

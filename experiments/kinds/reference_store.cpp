@@ -108,7 +108,9 @@ std::uint64_t fnv1a64_file(const fs::path& file) {
   return h;
 }
 
-std::string store_entry_id(const json& key) { return hex16(fnv1a64(key.dump())); }
+std::string fnv1a64_hex(const std::string& bytes) { return hex16(fnv1a64(bytes)); }
+
+std::string store_entry_id(const json& key) { return fnv1a64_hex(key.dump()); }
 
 ReferenceStore::ReferenceStore(fs::path dir, bool force) : dir_(std::move(dir)), force_(force) {}
 

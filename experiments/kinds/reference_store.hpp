@@ -74,6 +74,8 @@ class ReferenceStore {
 // 64-bit FNV-1a of a byte string, and of a file's contents (std::runtime_error when unreadable).
 std::uint64_t fnv1a64(const std::string& bytes);
 std::uint64_t fnv1a64_file(const std::filesystem::path& file);
+// 16 lowercase hex digits of fnv1a64(bytes) (the store's ids and checksums, the runner's cell ids and cell files).
+std::string fnv1a64_hex(const std::string& bytes);
 // The entry id of a key: 16 lowercase hex digits of fnv1a64(key.dump()) (nlohmann's dump sorts keys).
 std::string store_entry_id(const json& key);
 

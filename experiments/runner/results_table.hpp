@@ -14,11 +14,33 @@ namespace closurelab {
 // DIR/cells/<id>.json
 std::filesystem::path cell_file(const std::string& out_dir, const std::string& id);
 
-// The row in `file` if it is there, readable and was computed with exactly these resolved parameters
-// (whatever its status); nothing otherwise.
-std::optional<json> stored_row(const std::filesystem::path& file, const json& resolved);
+// A cell file holds the row and `cell_fnv1a64`: 16 hex digits of the FNV-1a (reference_store.hpp) of the row's
+// canonical dump without that key, so a file edited by hand or damaged is never reused or merged as if computed.
+// Files written before the checksum (committed results) have none: they are `legacy`, used as they are.
+inline constexpr const char* cell_checksum_key = "cell_fnv1a64";
 
-// Writes a finished cell's row atomically.
+struct StoredCell {
+  enum class State {
+    absent,        // no file
+    unreadable,    // truncated or not a JSON object (`problem` says why)
+    edited,        // its checksum does not match its contents
+    other_params,  // intact, but computed with other resolved parameters (an older default)
+    legacy,        // no checksum (an older closurelab); the row is used as it is
+    verified       // checksum matches
+  };
+  State state = State::absent;
+  std::optional<json> row;  // for legacy and verified: the row, without the checksum
+  std::string problem;
+  bool usable() const { return row.has_value(); }
+};
+
+// What `file` holds for a cell with these resolved parameters (whatever the row's status).
+StoredCell read_cell(const std::filesystem::path& file, const json& resolved);
+
+// The checksum a cell file carries for `row` (without cell_checksum_key).
+std::string cell_checksum(const json& row);
+
+// Writes a finished cell's row atomically, with its checksum.
 void write_row(const std::filesystem::path& file, const json& row);
 
 // The table of `rows` (in the matrix's order): the spec, the table's provenance derived from the rows

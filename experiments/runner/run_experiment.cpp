@@ -69,14 +69,22 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
   std::vector<std::string> mine_ids;
   std::vector<json> rows(cells.size());
   std::vector<bool> done(cells.size(), false);
-  std::size_t computed = 0, finished = 0, cached = 0;
+  std::size_t computed = 0, finished = 0, cached = 0, legacy = 0;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (shard_of[i] != shard.index) continue;
     mine.push_back(i);
     mine_ids.push_back(cells[i].id);
-    auto row = options.force ? std::nullopt : stored_row(cell_file(options.out_dir, cells[i].id), matrix->resolved[i]);
-    if (row && row->value("status", "") != "error") {
-      rows[i] = std::move(*row);
+    const fs::path file = cell_file(options.out_dir, cells[i].id);
+    StoredCell stored = options.force ? StoredCell{} : read_cell(file, matrix->resolved[i]);
+    // A damaged or edited file is never taken as this cell's result, and never replaced without a word.
+    if (stored.state == StoredCell::State::unreadable || stored.state == StoredCell::State::edited)
+      std::cerr << tag << "cell " << (i + 1) << "/" << cells.size() << " (" << cells[i].label << "): "
+                << (stored.state == StoredCell::State::unreadable ? "truncated or unreadable: " : "")
+                << file.string() << (stored.state == StoredCell::State::edited ? " " + stored.problem : "")
+                << "; recomputing it\n";
+    if (stored.usable() && stored.row->value("status", "") != "error") {
+      legacy += stored.state == StoredCell::State::legacy;
+      rows[i] = std::move(*stored.row);
       done[i] = true;
       ++cached;
       ++finished;
@@ -86,6 +94,9 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
       to_compute.push_back(i);
     }
   }
+  if (legacy > 0)
+    std::cerr << tag << "note: " << legacy << " finished cell file(s) carry no checksum (written by an older "
+              << "closurelab); reused as they are\n";
   const fs::path table_file = fs::path(options.out_dir) / (name + ".json");
   auto finished_rows = [&]() {
     std::vector<json> v;

@@ -14,6 +14,8 @@ namespace closurelab {
 
 namespace {
 
+// FNV-1a with an offset basis one digit short of the standard 14695981039346656037 (reference_store.hpp's
+// fnv1a64): kept as it is, since it names every committed cell file (ids are the resume and merge keys).
 std::string fnv1a_hex(const std::string& s) {
   std::uint64_t h = 1469598103934665603ull;
   for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;

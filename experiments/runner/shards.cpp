@@ -93,21 +93,36 @@ int merge_shards(const std::string& dir, const Registry& registry, const std::st
   std::vector<json> rows;
   std::vector<std::string> missing;
   std::vector<bool> shard_missing(static_cast<std::size_t>(count), false);
+  std::size_t legacy = 0;
   for (std::size_t i = 0; i < cells.size(); ++i) {
-    if (auto row = stored_row(cell_file(dir, cells[i].id), matrix->resolved[i])) {
-      rows.push_back(std::move(*row));
+    const fs::path file = cell_file(dir, cells[i].id);
+    StoredCell stored = read_cell(file, matrix->resolved[i]);
+    if (stored.usable()) {
+      legacy += stored.state == StoredCell::State::legacy;
+      rows.push_back(std::move(*stored.row));
       continue;
     }
+    // Merge computes nothing, so a cell it cannot trust is refused like a missing one: an edited row would
+    // otherwise enter the table as if computed, and re-running its shard recomputes it.
     const int s = shard_of[i];
+    const std::string cell = "cell " + std::to_string(i + 1) + "/" + std::to_string(cells.size()) + " (" +
+                             cells[i].label + ") of shard " + std::to_string(s) + "/" + std::to_string(count);
+    switch (stored.state) {
+      case StoredCell::State::absent: missing.push_back("missing " + cell + ": no " + file.string()); break;
+      case StoredCell::State::unreadable:
+        missing.push_back("truncated or unreadable: " + file.string() + " (" + cell + ")");
+        break;
+      default: missing.push_back(stored.problem + ": " + file.string() + " (" + cell + ")");  // edited, other_params
+    }
     shard_missing[static_cast<std::size_t>(s)] = true;
-    missing.push_back("cell " + std::to_string(i + 1) + "/" + std::to_string(cells.size()) + " (" + cells[i].label +
-                      ") of shard " + std::to_string(s) + "/" + std::to_string(count) + ": no " +
-                      cell_file(dir, cells[i].id).string());
   }
+  if (legacy > 0)
+    std::cerr << "note: " << legacy << " cell file(s) carry no checksum (written by an older closurelab); merged as "
+              << "they are\n";
   if (!missing.empty()) {
-    for (const auto& m : missing) std::cerr << "error: missing " << m << "\n";
+    for (const auto& m : missing) std::cerr << "error: " << m << "\n";
     std::cerr << "error: " << missing.size() << " of " << cells.size()
-              << " cell(s) missing; nothing was written. Run:\n";
+              << " cell(s) missing or unusable; nothing was written. Run:\n";
     for (int s = 0; s < count; ++s)
       if (shard_missing[static_cast<std::size_t>(s)])
         std::cerr << "  closurelab run " << spec_file << " --out " << dir << " --shard " << s << "/" << count << "   ("

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/base/params.hpp"
+#include "experiments/runner/results_table.hpp"
 #include "tests/support/cli_run.hpp"
 
 namespace fs = std::filesystem;
@@ -64,6 +65,7 @@ TEST(RunnerProvenance, RowsKeepTheirRunAndACachedRerunChangesNothing) {
   json row0 = read(cell);
   row0["provenance"]["git_commit"] = "0123456789ab";
   row0["provenance"]["dirty"] = true;
+  row0[closurelab::cell_checksum_key] = closurelab::cell_checksum(row0);  // as that build would have written it
   write_text(cell, row0.dump(2) + "\n");
   const CliOutcome third = run_closurelab(work, run);
   ASSERT_EQ(third.code, 0) << third.err;

@@ -5,7 +5,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <optional>
 #include <tuple>
 
@@ -119,14 +118,14 @@ class ReducedModel : public ExperimentKind {
     std::optional<DirectProfiles> direct;
     json reference_file;  // the file's record when the reference is read from one
     const std::string file = cfg.at("reference").at("file").get<std::string>();
-    const Eigen::VectorXd nodes = reduced_grid(*scene, *kernel, opt).coarse.nodes();
-    if (!file.empty()) {
+    const auto nodes = [&] { return reduced_grid(*scene, *kernel, opt).coarse.nodes(); };
+    if (!file.empty()) {  // a particle file in place of the direct run, averaged as its final state is
       progress("reading the reference '" + file + "'");
       ReferenceFile f = read_reference_file(*scene, file, cfg.at("reference").at("step").get<int>(), "/reference/file");
-      direct = reference_profiles(f.particles, *scene, *kernel, nodes);
+      direct = reference_profiles(f.particles, *scene, *kernel, nodes());
       reference_file = std::move(f.record);
     } else if (cfg.at("reference").at("direct_sph").get<bool>()) {
-      direct = direct_reference(cfg, *scene, *kernel, nodes, progress);
+      direct = direct_reference(cfg, *scene, *kernel, nodes(), progress);
     }
     std::optional<MesoOracles> oracles;
     if (uses_oracles(cfg)) {

@@ -5,7 +5,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <optional>
 #include <tuple>
 
@@ -20,6 +19,7 @@
 #include "experiments/runner/cell_config.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/reduced_sections.hpp"
+#include "experiments/kinds/reference_profiles.hpp"
 #include "experiments/runner/provenance.hpp"
 
 namespace closurelab {
@@ -40,18 +40,20 @@ ParamSchema transient_schema() {
                       "channel width, or L_y without walls); the steady state is always reported as well")};
 }
 
-struct DirectProfiles {
-  Eigen::VectorXd averaged;  // at the coarse nodes
-  json run;
-  std::vector<Eigen::VectorXd> snapshots;
-  Eigen::VectorXd row_y, row_velocity;
-};
+// The reference section: the shared one (reduced_sections.hpp) and a particle file in place of the direct run.
+ParamSchema reference_section_schema() {
+  ParamSchema s = reference_schema();
+  for (auto& p : reference_file_schema()) s.push_back(std::move(p));
+  return s;
+}
+
+using DirectProfiles = ReferenceProfiles;
 class ReducedModel : public ExperimentKind {
  public:
   std::string name() const override { return "reduced_model"; }
   std::string description() const override {
     return "coarse solver with a deconvolution closure and a stress quadrature vs analytic, averaged analytic and "
-           "averaged direct SPH, with cost and speed-up";
+           "averaged direct SPH (or a particle file from elsewhere in its place: reference.file), with cost and speed-up";
   }
 
   std::vector<KindSection> sections() const override {
@@ -60,7 +62,7 @@ class ReducedModel : public ExperimentKind {
             {"closure", "the deconvolution closure", "", closure_schema()},
             {"quadrature", "the stress quadrature (default exact)", "quadrature", {}},
             {"solver", "the coarse solver", "", meso_solver_schema()},
-            {"reference", "the direct SPH reference", "", reference_schema()},
+            {"reference", "the direct SPH reference, or a particle file in its place", "", reference_section_schema()},
             {"transient", "snapshots of both solvers", "", transient_schema()},
             {"oracle", "oracle substitution from the direct SPH (the error budget)", "", oracle_schema()},
             {"timing", "how the reduced run is repeated for its time (minimum, median, spread)", "",
@@ -83,7 +85,7 @@ class ReducedModel : public ExperimentKind {
     out["solver"] = resolve_section(cell, "solver", meso_solver_schema(), path);
     check_time_loop(out["solver"], path + "/solver");
     check_implicit_closure(out["solver"], out["closure"]["deconvolver"], path);
-    out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
+    out["reference"] = resolve_section(cell, "reference", reference_section_schema(), path);
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
     check_time_loop(out["reference"]["solver"], path + "/reference/solver");
@@ -95,6 +97,7 @@ class ReducedModel : public ExperimentKind {
     if (out["oracle"]["boundary"] != "none" && !scene->has_walls)
       throw ConfigError(path + "/oracle/boundary", "scene '" + scene->name + "' has no walls");
     check_snapshot_times(out["transient"]["t_star"], path + "/transient/t_star");
+    check_reference_file(cell, out, *scene, path);  // reference_profiles.hpp
     // Cheap structural checks now (coarse mesh, quadrature fit) so that a bad cell fails before any runs; the
     // strategies are set up once, when the cell runs.
     try {
@@ -113,8 +116,17 @@ class ReducedModel : public ExperimentKind {
     opt.snapshot_times = snapshot_times(cfg, *scene);
     // The direct reference first: the oracles need it before the reduced run.
     std::optional<DirectProfiles> direct;
-    if (cfg.at("reference").at("direct_sph").get<bool>())
-      direct = direct_reference(cfg, *scene, *kernel, reduced_grid(*scene, *kernel, opt).coarse.nodes(), progress);
+    json reference_file;  // the file's record when the reference is read from one
+    const std::string file = cfg.at("reference").at("file").get<std::string>();
+    const auto nodes = [&] { return reduced_grid(*scene, *kernel, opt).coarse.nodes(); };
+    if (!file.empty()) {  // a particle file in place of the direct run, averaged as its final state is
+      progress("reading the reference '" + file + "'");
+      ReferenceFile f = read_reference_file(*scene, file, cfg.at("reference").at("step").get<int>(), "/reference/file");
+      direct = reference_profiles(f.particles, *scene, *kernel, nodes());
+      reference_file = std::move(f.record);
+    } else if (cfg.at("reference").at("direct_sph").get<bool>()) {
+      direct = direct_reference(cfg, *scene, *kernel, nodes(), progress);
+    }
     std::optional<MesoOracles> oracles;
     if (uses_oracles(cfg)) {
       MesoOracles o;
@@ -238,7 +250,10 @@ class ReducedModel : public ExperimentKind {
       const auto& [averaged, run, direct_snapshots, row_y, row_velocity] = *direct;
       errors["vs_averaged_direct_sph"] = norms(averaged);
       profile["direct_average"] = averaged;
-      row["direct_sph"] = run;
+      if (file.empty())
+        row["direct_sph"] = run;
+      else
+        row["reference_file"] = reference_file;
       // The transient: both runs at the same model times t = t* L / v_max.
       json transient = json::array();
       const json& t_star = cfg.at("transient").at("t_star");
@@ -264,7 +279,11 @@ class ReducedModel : public ExperimentKind {
       if (!t_star.empty()) row["transient"] = transient;
     }
     finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, reduced.deconvolution_issues,
-                       direct ? &direct->run : nullptr);
+                       direct && file.empty() ? &direct->run : nullptr);
+    if (!file.empty()) {  // no direct run was timed: no speed-up (null, not 0)
+      row["cost"]["speed_up"] = nullptr;
+      row["cost"]["speed_up_note"] = "none: the reference was read from a file (reference.file), no direct run was timed";
+    }
     row["profile"] = profile;
     return row;
   }
@@ -297,26 +316,10 @@ class ReducedModel : public ExperimentKind {
     const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("reference").at("solver"),
                                    column_mesh(scene.box, spacing).y.spacing, snapshot_times(cfg, scene)};
     const StoredReference c = stored_direct_reference(request, scene, kernel, progress);
-    UniformMesh1D axis{nodes[0], nodes.size() > 1 ? nodes[1] - nodes[0] : 1.0, static_cast<int>(nodes.size()),
-                       !scene.has_walls, scene.has_walls ? 0.0 : scene.box.ly};
-    const TensorMesh2D mesh{UniformMesh1D{0.0, scene.box.lx, 1, true, scene.box.lx}, axis};
-    std::vector<Eigen::VectorXd> snapshots;
-    for (const auto& snap : c.snapshots)
-      snapshots.push_back(average_particles(snap.particles, scene.box, kernel, mesh, AveragingRequest{}).vx);
-    std::map<long, std::pair<double, int>> rows;  // lattice row → (Σ v_x, count) over the fluid particles
-    for (std::size_t a = 0; a < c.particles.size(); ++a) {
-      if (c.particles.fixed[a]) continue;
-      auto& r = rows[std::lround(c.particles.y[a] / scene.dx - 0.5)];
-      r.first += c.particles.vx[a];
-      ++r.second;
-    }
-    Eigen::VectorXd row_y(static_cast<Eigen::Index>(rows.size())), row_v(static_cast<Eigen::Index>(rows.size()));
-    Eigen::Index i = 0;
-    for (const auto& [row, sum] : rows) {
-      row_y[i] = (row + 0.5) * scene.dx;
-      row_v[i++] = sum.first / sum.second;
-    }
-    return {average_particles(c.particles, scene.box, kernel, mesh, AveragingRequest{}).vx, c.run, snapshots, row_y, row_v};
+    DirectProfiles out = reference_profiles(c.particles, scene, kernel, nodes);
+    out.run = c.run;
+    for (const auto& snap : c.snapshots) out.snapshots.push_back(average_on_nodes(snap.particles, scene, kernel, nodes));
+    return out;
   }
 };
 

@@ -1,0 +1,140 @@
+#include "experiments/kinds/reference_profiles.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <map>
+
+#include "core/averaging/averaging.hpp"
+#include "core/base/errors.hpp"
+#include "core/io/pysph_output.hpp"
+#include "experiments/kinds/reference_store.hpp"
+
+namespace closurelab {
+
+Eigen::VectorXd average_on_nodes(const ParticleSystem& particles, const Scene& scene, const AveragingKernel& kernel,
+                                 const Eigen::VectorXd& nodes) {
+  UniformMesh1D axis{nodes[0], nodes.size() > 1 ? nodes[1] - nodes[0] : 1.0, static_cast<int>(nodes.size()),
+                     !scene.has_walls, scene.has_walls ? 0.0 : scene.box.ly};
+  const TensorMesh2D mesh{UniformMesh1D{0.0, scene.box.lx, 1, true, scene.box.lx}, axis};
+  return average_particles(particles, scene.box, kernel, mesh, AveragingRequest{}).vx;
+}
+
+ReferenceProfiles reference_profiles(const ParticleSystem& particles, const Scene& scene,
+                                     const AveragingKernel& kernel, const Eigen::VectorXd& nodes) {
+  std::map<long, std::pair<double, int>> rows;  // lattice row → (Σ v_x, count) over the fluid particles
+  for (std::size_t a = 0; a < particles.size(); ++a) {
+    if (particles.fixed[a]) continue;
+    auto& r = rows[std::lround(particles.y[a] / scene.dx - 0.5)];
+    r.first += particles.vx[a];
+    ++r.second;
+  }
+  ReferenceProfiles out;
+  out.row_y.resize(static_cast<Eigen::Index>(rows.size()));
+  out.row_velocity.resize(static_cast<Eigen::Index>(rows.size()));
+  Eigen::Index i = 0;
+  for (const auto& [row, sum] : rows) {
+    out.row_y[i] = (row + 0.5) * scene.dx;
+    out.row_velocity[i++] = sum.first / sum.second;
+  }
+  out.averaged = average_on_nodes(particles, scene, kernel, nodes);
+  return out;
+}
+
+ParamSchema reference_file_schema() {
+  return {string_param("file", "",
+                       "a particle snapshot as the reference instead of the direct SPH run: .h5part/.h5/.hdf5 (H5Part "
+                       "layout or PySPH's own output) or .csv (x,y,vx,vy,mass,phase[,fixed]); averaged onto the "
+                       "coarse nodes as the direct run's final state is; no transient, no speed-up"),
+          integer_param("step", -1, "with file: the H5Part step N of Step#N (-1: the last; PySPH output and CSV: 0 or -1)",
+                        -1, {})};
+}
+
+namespace {
+
+std::string layout_of(const std::string& file) {
+  if (is_pysph_output(file)) return "pysph_output";
+  const std::string ext = std::filesystem::path(file).extension().string();
+  return ext == ".csv" ? "csv" : "h5part";
+}
+
+std::string hex16(std::uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+}  // namespace
+
+ReferenceFile read_reference_file(const Scene& scene, const std::string& file, int step, const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw ConfigError(path, "'" + file + "' is not a readable file");
+  ParticleSnapshot snap;
+  try {
+    snap = read_particle_snapshot(file, step);
+  } catch (const ConfigError& e) {
+    throw ConfigError(path, e.message());
+  } catch (const std::exception& e) {
+    throw ConfigError(path, "'" + file + "': " + e.what());
+  }
+  ParticleSystem& p = snap.particles;
+  const std::size_t expected = scene.make_particles().size();
+  if (p.size() != expected)
+    throw ConfigError(path, "'" + file + "' holds " + std::to_string(p.size()) + " particles, the scene '" + scene.name +
+                                "' has " + std::to_string(expected) + ": a snapshot of another scene or resolution");
+  double y_lo = std::numeric_limits<double>::infinity(), y_hi = -y_lo;
+  for (std::size_t a = 0; a < p.size(); ++a) {
+    if (!(p.x[a] >= 0 && p.x[a] < scene.box.lx && p.y[a] >= 0 && p.y[a] < scene.box.ly))
+      throw ConfigError(path, "'" + file + "': particle " + std::to_string(a) + " at (" + std::to_string(p.x[a]) + ", " +
+                                  std::to_string(p.y[a]) + ") lies outside the scene's box [0, " +
+                                  std::to_string(scene.box.lx) + ") x [0, " + std::to_string(scene.box.ly) + ")");
+    if (p.phase[a] >= static_cast<int>(scene.phase_viscosity.size()))
+      throw ConfigError(path, "'" + file + "': particle " + std::to_string(a) + " has phase " + std::to_string(p.phase[a]) +
+                                  ", the scene has " + std::to_string(scene.phase_viscosity.size()));
+    if (!snap.has_fixed) p.fixed[a] = scene.is_wall(p.y[a]) ? 1 : 0;
+    y_lo = std::min(y_lo, p.y[a]);
+    y_hi = std::max(y_hi, p.y[a]);
+  }
+  // The lattice fills the box: its first and last rows lie within one spacing of the box's ends.
+  if (y_lo > scene.dx || y_hi < scene.box.ly - scene.dx)
+    throw ConfigError(path, "'" + file + "': the particles span y in [" + std::to_string(y_lo) + ", " +
+                                std::to_string(y_hi) + "], the scene's box is [0, " + std::to_string(scene.box.ly) +
+                                "): a snapshot of another box");
+  ReferenceFile out;
+  out.record = {{"path", file},
+                {"bytes", static_cast<std::uintmax_t>(std::filesystem::file_size(file, ec))},
+                {"fnv1a64", hex16(fnv1a64_file(file))},
+                {"layout", layout_of(file)},
+                {"step", step},
+                {"time", snap.time},
+                {"particles", p.size()},
+                {"fixed_from", snap.has_fixed ? "file" : "scene walls"}};
+  out.particles = std::move(p);
+  return out;
+}
+
+// reference.file: read and checked against the scene now, before anything runs; no transient (it needs the
+// direct run's history), no direct run's solver, and the direct_sph switch left on.
+void check_reference_file(const json& cell, const json& out, const Scene& scene, const std::string& path) {
+  const json& ref = out.at("reference");
+  const std::string file = ref.at("file").get<std::string>();
+  const json given = cell.contains("reference") && cell["reference"].is_object() ? cell["reference"] : json::object();
+  if (file.empty()) {
+    if (given.contains("step"))
+      throw ConfigError(path + "/reference/step", "a step picks a snapshot of reference.file; no file is given");
+    return;
+  }
+  if (!ref.at("direct_sph").get<bool>())
+    throw ConfigError(path + "/reference/direct_sph", "reference.file is the reference; direct_sph false asks for none");
+  for (const char* key : {"solver", "observe_spacing_over_eta"})
+    if (given.contains(key))
+      throw ConfigError(path + "/reference/" + key, "the direct run's parameters are not used with reference.file");
+  if (!out.at("transient").at("t_star").empty())
+    throw ConfigError(path + "/transient/t_star", "transient snapshots need the direct run's history; a reference "
+                                                  "read from a file (reference.file) is one state");
+  read_reference_file(scene, file, ref.at("step").get<int>(), path + "/reference/file");
+}
+
+}  // namespace closurelab

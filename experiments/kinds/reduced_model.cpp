@@ -15,6 +15,8 @@
 #include "core/reduced/implicit_closure.hpp"
 #include "core/reduced/meso_solver.hpp"
 #include "core/base/metrics.hpp"
+#include "core/base/time_loop.hpp"
+#include "core/sph/sph_run.hpp"
 #include "core/closure/stress_quadrature.hpp"
 #include "experiments/runner/cell_config.hpp"
 #include "experiments/kinds/direct_reference.hpp"
@@ -89,6 +91,11 @@ class ReducedModel : public ExperimentKind {
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
     check_time_loop(out["reference"]["solver"], path + "/reference/solver");
+    if (out["reference"]["direct_sph"].get<bool>()) {  // the direct run must be able to finish and mean steady
+      check_run_can_finish(*scene, out["reference"]["solver"], path + "/reference/solver");
+      if (scene->has_walls)
+        check_steady_reach(out["reference"]["solver"], (scene->wall_hi - scene->wall_lo) / scene->dx, path + "/reference/solver");
+    }
     out["transient"] = resolve_section(cell, "transient", transient_schema(), path);
     out["oracle"] = resolve_section(cell, "oracle", oracle_schema(), path);
     out["timing"] = resolve_section(cell, "timing", reduced_timing_schema(), path);

@@ -56,7 +56,7 @@ ParamSchema time_loop_schema(const TimeLoopOptions& defaults);
 // Reads those parameters from a resolved solver section into `options`.
 void read_time_loop(const json& resolved, TimeLoopOptions& options);
 // Cross-parameter checks of a resolved section at JSON path `path`: target_time <= max_time, and in steady mode a
-// window that can mean steady (steady_window_reach below): the section's kappa bounds every model's step by
+// window that can mean steady (and check_steady_reach below, where the scene is known): the section's kappa bounds every model's step by
 // kappa·ρh²/μ_max ((5.22), h the model's spacing), so a window of W steps spans at most W·kappa viscous times of
 // the spacing; under one, no relaxation shows in the change and a run stops at any distance from steady state
 // (kappa = 1e-6: `converged` at 99 % error). The tolerance must be at most kMaxSteadyTolerance.

@@ -5,6 +5,7 @@
 #include "core/base/errors.hpp"
 #include "core/reduced/force_density_2d.hpp"
 #include "core/reduced/implicit_closure.hpp"
+#include "core/reduced/meso_solver_2d.hpp"
 
 namespace closurelab {
 
@@ -38,14 +39,7 @@ TensorMesh2D force_density_coarse_mesh(const Scene& scene, const AveragingKernel
   if (!scene.box.periodic_x || !scene.box.periodic_y || scene.has_walls)
     throw ConfigError("/scene", "the 2D force-density model needs a doubly periodic box (solids given by position); "
                                 "scene '" + scene.name + "' is not one");
-  const double target = spacing_over_eta * kernel.eta();
-  const int nx = static_cast<int>(std::lround(scene.box.lx / target));
-  const int ny = static_cast<int>(std::lround(scene.box.ly / target));
-  if (nx < 4 || ny < 4)
-    throw ConfigError("/solver/spacing_over_eta", "fewer than 4 coarse nodes along a side of the box (" +
-                                                      std::to_string(nx) + " x " + std::to_string(ny) + ")");
-  return {UniformMesh1D::cell_centred(0.0, scene.box.lx, nx, true),
-          UniformMesh1D::cell_centred(0.0, scene.box.ly, ny, true)};
+  return coarse_mesh_2d(scene, kernel, spacing_over_eta);  // the 2D reduced model's periodic mesh
 }
 
 TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorMesh2D& coarse, int refinement) {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/base/time_loop.hpp"
 #include "core/sph/sph_engine.hpp"
 
 namespace closurelab {
@@ -117,6 +118,12 @@ void check_run_can_finish(const Scene& scene, const json& s, const std::string& 
      << dt << ", more than max_steps = " << max_steps << ": the run could only give up; shorten target_time or "
      << "raise max_steps";
   throw ConfigError(path + "/target_time", os.str());
+}
+
+void check_direct_run(const Scene& scene, const json& s, const std::string& path) {
+  check_run_can_finish(scene, s, path);
+  if (scene.has_walls && !scene.permeability && !scene.cellular_mode)
+    check_steady_reach(s, (scene.wall_hi - scene.wall_lo) / scene.dx, path);
 }
 
 }  // namespace closurelab

@@ -47,5 +47,9 @@ SphRunOptions sph_run_options_from(const json& resolved_solver);
 // the step is at most kappa·min(dx/c, rho dx²/mu_max) (the particles at rest; it only shrinks as they move), so
 // it needs at least target_time / that steps. `path` is the solver section's JSON path.
 void check_run_can_finish(const Scene& scene, const json& resolved_solver, const std::string& path);
+// The checks of a direct run's resolved solver section before anything runs, for every kind that runs one: it can
+// finish (check_run_can_finish) and, in a channel, a run called steady is near steady state (check_steady_reach
+// across the walls' distance in spacings).
+void check_direct_run(const Scene& scene, const json& resolved_solver, const std::string& path);
 
 }  // namespace closurelab

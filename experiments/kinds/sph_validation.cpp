@@ -143,10 +143,7 @@ class SphValidation : public ExperimentKind {
     build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["solver"] = resolve_section(cell, "solver", sph_solver_schema(), path);
     check_time_loop(out["solver"], path + "/solver");
-    check_run_can_finish(*scene, out["solver"], path + "/solver");
-    // A channel: the slowest mode's relaxation across the walls' distance bounds what a steady test can mean.
-    if (scene->has_walls && !scene->permeability && !scene->cellular_mode)
-      check_steady_reach(out["solver"], (scene->wall_hi - scene->wall_lo) / scene->dx, path + "/solver");
+    check_direct_run(*scene, out["solver"], path + "/solver");
     out["averaging"] = resolve_section(cell, "averaging", averaging_schema(), path);
     return out;
   }

@@ -71,8 +71,7 @@ class DeconvolverBase : public Deconvolver {
   }
 
   // Columns at once where the strategy offers it (solve_fixed_columns) for a fixed parameter on a well-scaled
-  // problem, with each column's norms from one product A X and the same final guards as solve(); else one solve
-  // per column.
+  // problem, each column's norms from one product A X and the guards of solve(); else one solve per column.
   Eigen::MatrixXd solve_columns(const Eigen::MatrixXd& B, double noise_level = 0.0,
                                 std::vector<DeconvolutionResult>* results = nullptr) const final {
     require_setup();
@@ -85,8 +84,7 @@ class DeconvolverBase : public Deconvolver {
     FixedColumns fc;
     if (batched) fc = solve_fixed_columns(B);
     if (fc.x.cols() != B.cols() || fc.x.rows() != a_->cols()) return Deconvolver::solve_columns(B, noise_level, results);
-    const Eigen::MatrixXd residual = B - (a_->storage() == OperatorStorage::dense ? Eigen::MatrixXd(a_->dense() * fc.x)
-                                                                                  : apply_to_columns(fc.x));
+    const Eigen::MatrixXd residual = B - apply_to_columns(fc.x);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
                            static_cast<double>(std::max<Eigen::Index>(B.cols(), 1));
     for (Eigen::Index k = 0; k < B.cols(); ++k) {
@@ -122,7 +120,8 @@ class DeconvolverBase : public Deconvolver {
   virtual FixedColumns solve_fixed_columns(const Eigen::MatrixXd& /*B*/) const { return {}; }
 
  private:
-  Eigen::MatrixXd apply_to_columns(const Eigen::MatrixXd& x) const {
+  Eigen::MatrixXd apply_to_columns(const Eigen::MatrixXd& x) const {  // A X: one product where A is dense
+    if (a_->storage() == OperatorStorage::dense) return a_->dense() * x;
     Eigen::MatrixXd out(a_->rows(), x.cols());
     for (Eigen::Index k = 0; k < x.cols(); ++k) out.col(k) = a_->apply(x.col(k));
     return out;

@@ -79,6 +79,10 @@ class ForwardOperator {
   // of the n + 1 links, the two end links to the known zeros included (e.g. the viscosity at each link, for
   // a minimum-viscous-dissipation prior); used by difference regularizers that include the end links.
   std::optional<Eigen::VectorXd> link_weights;
+  // Unknowns that are not a tensor mesh (e.g. the reconstruction nodes outside a solid, core/reduced/force_density_2d):
+  // the weighted first difference L over their links, one row per link, √w (x_p − x_q), a link to a known zero with
+  // its one entry (cols() columns). first_difference_zero_ends uses it in place of the 1D construction.
+  std::optional<Eigen::SparseMatrix<double>> difference_links;
 
  private:
   OperatorStorage storage_ = OperatorStorage::dense;

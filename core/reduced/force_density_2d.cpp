@@ -3,6 +3,7 @@
 // bound to the forward operators (core/reduced/force_density_2d.hpp). The steady solve is force_density_2d_solve.cpp,
 // the solver section and the checks force_density_2d_schema.cpp.
 #include "core/reduced/force_density_2d.hpp"
+#include "core/reduced/force_density_2d_assembly.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -15,86 +16,26 @@
 
 namespace closurelab {
 
-namespace {
-
-// A row over the reconstruction nodes, accumulated densely and read back sparsely.
-class ScratchRow {
- public:
-  explicit ScratchRow(Eigen::Index n) : value_(Eigen::VectorXd::Zero(n)), seen_(static_cast<std::size_t>(n), 0) {}
-  void add(int node, double v) {
-    if (!seen_[static_cast<std::size_t>(node)]) {
-      seen_[static_cast<std::size_t>(node)] = 1;
-      touched_.push_back(node);
-    }
-    value_[node] += v;
-  }
-  // Calls f(node, value) for each entry, then clears.
-  template <class F>
-  void drain(F f) {
-    for (int n : touched_) {
-      if (value_[n] != 0.0) f(n, value_[n]);
-      value_[n] = 0.0;
-      seen_[static_cast<std::size_t>(n)] = 0;
-    }
-    touched_.clear();
-  }
-
- private:
-  Eigen::VectorXd value_;
-  std::vector<std::uint8_t> seen_;
-  std::vector<int> touched_;
-};
-
-// The Gaussian window's 1D factor at the nodes of a periodic axis around q, periodic images summed; factors below
-// cutoff · φ(0) are dropped.
-std::vector<std::pair<int, double>> axis_window(const AveragingKernel& kernel, const UniformMesh1D& axis, double q,
-                                                double cutoff) {
-  std::vector<std::pair<int, double>> out;
-  for_nodes_within(axis, q, kernel.support_radius(), [&](int n, double d) { out.emplace_back(n, kernel.factor(d)); });
-  // for_nodes_within visits each image separately: merge the images of one node, then drop the tail.
-  std::sort(out.begin(), out.end());
-  std::size_t k = 0;
-  for (std::size_t u = 0; u < out.size(); ++u) {
-    if (k > 0 && out[k - 1].first == out[u].first)
-      out[k - 1].second += out[u].second;
-    else
-      out[k++] = out[u];
-  }
-  out.resize(k);
-  const double drop = cutoff * kernel.factor(0.0);
-  out.erase(std::remove_if(out.begin(), out.end(), [&](const auto& e) { return e.second < drop; }), out.end());
-  return out;
-}
-
-// The SPH pair stencil of the square lattice of spacing dx: the offsets within the smoothing function's support,
-// with F = w'(r)/r and q_ab = q_a − q_b = −(di, dj) dx; n0 = Σ w, the lattice's number density.
-struct Offset {
-  int di, dj;
-  double F, qx, qy;
-};
-std::vector<Offset> pair_stencil(const SmoothingKernel& w, double dx, double& n0) {
-  std::vector<Offset> stencil;
-  n0 = w.w(0.0);
-  const int reach = static_cast<int>(std::ceil(w.support() / dx));
-  for (int dj = -reach; dj <= reach; ++dj)
-    for (int di = -reach; di <= reach; ++di) {
-      const double r = std::hypot(di, dj) * dx;
-      if ((di == 0 && dj == 0) || r >= w.support()) continue;
-      stencil.push_back({di, dj, w.dw(r) / r, -di * dx, -dj * dx});
-      n0 += w.w(r);
-    }
-  return stencil;
-}
-
-}  // namespace
+using namespace force_density_detail;
 
 ForceDensitySolver2D::Interp ForceDensitySolver2D::bilinear_weights(const TensorMesh2D& mesh, const Vec2& q) {
+  // Along a periodic axis the two nodes around q wrap; along a bounded one a point beyond the first or last node takes
+  // that node's value (only solid particles lie there). A point within 1e-12 spacings of a node is on it, so that a
+  // reconstruction on the lattice rows reads exactly its own row.
   const auto axis = [](const UniformMesh1D& m, double c, int& i0, int& i1, double& t) {
-    const double s = (c - m.origin) / m.spacing;
+    double s = (c - m.origin) / m.spacing;
+    const double nearest = std::round(s);
+    if (std::abs(s - nearest) < 1e-12) s = nearest;
     const double f = std::floor(s);
     t = s - f;
-    i0 = ((static_cast<int>(f) % m.count) + m.count) % m.count;
-    i1 = (i0 + 1) % m.count;
+    const int k = static_cast<int>(f);
+    if (m.periodic) {
+      i0 = ((k % m.count) + m.count) % m.count;
+      i1 = (i0 + 1) % m.count;
+    } else {
+      i0 = std::clamp(k, 0, m.count - 1);
+      i1 = std::clamp(k + 1, 0, m.count - 1);
+    }
   };
   int x0, x1, y0, y1;
   double tx, ty;
@@ -127,7 +68,7 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
     site[static_cast<std::size_t>(j * lnx + i)] = static_cast<int>(a);
   }
   fixed_ = lattice.fixed;
-  // Bilinear weights of every particle on the periodic reconstruction mesh.
+  // Bilinear weights of every particle on the reconstruction mesh.
   interp_.resize(np);
   for (std::size_t a = 0; a < np; ++a) interp_[a] = bilinear_weights(recon_, Vec2(lattice.x[a], lattice.y[a]));
   double n0 = 0.0;
@@ -171,6 +112,7 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
       // Particle a's own coefficients, summed over its pairs before they are interpolated once.
       double own_visc = 0.0, own_px = 0.0, own_py = 0.0, own_cx = 0.0, own_cy = 0.0;
       for (const Offset& o : stencil) {
+        if (!scene.box.periodic_y && (j + o.dj < 0 || j + o.dj >= lny)) continue;  // beyond a wall's outer face
         const long bi = ((i + o.di) % lnx + lnx) % lnx, bj = ((j + o.dj) % lny + lny) % lny;
         const auto b = static_cast<std::size_t>(site[static_cast<std::size_t>(bj * lnx + bi)]);
         const bool b_fluid = !fixed_[b];
@@ -276,6 +218,18 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
   }
   op_v_ = ForwardOperator::from_dense(std::move(a_v_op));
   op_n_ = ForwardOperator::from_dense(std::move(a_n_op));
+  // The priors of first_difference_zero_ends: the velocity's links viscosity-weighted (the harmonic mean of the two
+  // ends' viscosity over the largest, as the 1D model's), its links into the solid to the known zero; the density's
+  // links unweighted, every node an unknown.
+  std::vector<int> unknown_of(static_cast<std::size_t>(nr), -1);
+  for (std::size_t c = 0; c < velocity_columns_.size(); ++c) unknown_of[static_cast<std::size_t>(velocity_columns_[c])] = static_cast<int>(c);
+  const double mu_max = scene.max_viscosity();
+  op_v_.difference_links = link_differences(recon_, unknown_of, static_cast<int>(velocity_columns_.size()), [&](int p, int q) {
+    const double a = scene.viscosity_at(recon_.node(p)), b = scene.viscosity_at(recon_.node(q));
+    return 2.0 * a * b / (a + b) / mu_max;
+  });
+  for (Eigen::Index r = 0; r < nr; ++r) unknown_of[static_cast<std::size_t>(r)] = static_cast<int>(r);
+  op_n_.difference_links = link_differences(recon_, unknown_of, static_cast<int>(nr), [](int, int) { return 1.0; });
   full_v_ = std::move(maps[op_v]);
   full_n_ = std::move(maps[op_n]);
   viscous_ = std::move(maps[visc]);

@@ -1,8 +1,9 @@
 #pragma once
 // The linearised force-density reduced model in two dimensions, with solids (issue 21 §3; beyond the paper): the
-// averaged balance of a doubly periodic scene whose particles stay near their lattice sites (Stokes flow, Re ≪ 1),
-// solids given by position (the scene's frozen particles, e.g. a lattice of cylinders), on a periodic tensor coarse
-// mesh of spacing Δ ≈ η'. The state is v̄ (both components) and n̄, the average of the particles' number-density
+// averaged balance of a scene periodic in x, and in y or bounded by walls in y, whose particles stay near their
+// lattice sites (Stokes flow, Re ≪ 1), solids given by position (the scene's frozen particles: walls, or a lattice of
+// cylinders; the walls are solids like any other), on a tensor coarse mesh of spacing Δ ≈ η' (one column for an
+// x-invariant scene: a channel is the n_x = 1 case). The state is v̄ (both components) and n̄, the average of the particles' number-density
 // deviation δn (the pressure's carrier: P = c²(m n − ρ0) + P_b):
 //   ρ̄ ∂_t v̄ = Σ_{a fluid} ψ(x − q_a) (f_a + m g(q_a)),     ∂_t n̄ = Σ_a ψ(x − q_a) ṅ_a / Σ_a ψ(x − q_a),
 // the exact averaged balance (2.11) of the fluid particles (the force density: the divergence of (2.13) plus the
@@ -53,7 +54,7 @@ struct EnumNames<HeldNodeValue> {
 
 struct ForceDensity2DOptions {
   double spacing_over_eta = 1.0;      // Δ / η'
-  int reconstruction_refinement = 2;  // the reconstruction mesh's spacing is Δ / this (1: the coarse mesh)
+  int reconstruction_refinement = 2;  // the reconstruction mesh's spacing is Δ / this (1: the coarse mesh; 0: the lattice)
   double window_cutoff = 1e-10;       // ψ below this fraction of ψ(0) is dropped from the assembled maps
   // Coarse nodes whose window's fluid mass fraction f = Σ_fluid m ψ / ρ̄ is below this are held: neither evolved nor
   // deconvolution data. Their v̄ is at most f times the largest fluid velocity in the window, and that fluid sits
@@ -68,9 +69,12 @@ struct ForceDensity2DOptions {
 ParamSchema force_density_2d_schema();
 ForceDensity2DOptions force_density_2d_options_from(const json& resolved_solver);
 
-// The periodic cell-centred coarse mesh of spacing ≈ spacing_over_eta · η'; ConfigError at /scene (a box not
-// periodic in both directions) or /solver/spacing_over_eta (fewer than 4 nodes along a side); and the
-// reconstruction mesh (ConfigError at /solver/reconstruction_refinement when it is finer than the lattice).
+// The coarse mesh of spacing ≈ spacing_over_eta · η': along x one column for an x-invariant scene, else cell-centred;
+// along y cell-centred when periodic, else (walls in y) the 1D model's nodes, on both wall surfaces and evenly between
+// ((5.6), core/reduced/reduced_grid.hpp). ConfigError at /scene (a box not periodic in x, or neither periodic nor
+// walled in y) or /solver/spacing_over_eta (fewer than 4 nodes along a resolved side). The reconstruction mesh:
+// the coarse one refined (one column stays one), across the whole box in a walled y (ConfigError at
+// /solver/reconstruction_refinement when it is finer than the lattice).
 TensorMesh2D force_density_coarse_mesh(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta);
 TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorMesh2D& coarse, int refinement);
 // The checks before any work, for validating a spec: the meshes, the lattice's particles on their sites.
@@ -80,6 +84,7 @@ struct ForceDensity2DResult : ClosureRunResult {
   TensorMesh2D mesh;                // the coarse nodes
   Eigen::VectorXd vx, vy, density;  // v̄ and n̄ there (flat j * nx + i)
   long free_nodes = 0;                // evolved (the others held)
+  long reconstruction_nodes = 0;      // the reconstruction mesh's
   double superficial_velocity = 0.0;  // ⟨u_x⟩ over the whole cell from the reconstructed particle velocities
   double setup_seconds = 0.0;         // assembling the maps and the deconvolvers' setup
   double assembly_seconds = 0.0;      // of which assembling the maps

@@ -5,7 +5,7 @@
 #include "core/base/errors.hpp"
 #include "core/reduced/force_density_2d.hpp"
 #include "core/reduced/implicit_closure.hpp"
-#include "core/reduced/meso_solver_2d.hpp"
+#include "core/reduced/reduced_grid.hpp"
 
 namespace closurelab {
 
@@ -13,7 +13,9 @@ ParamSchema force_density_2d_schema() {
   const ForceDensity2DOptions d;  // the defaults
   return {number_param("spacing_over_eta", d.spacing_over_eta, "coarse mesh spacing Delta / eta'", 0.05, 4.0),
           integer_param("reconstruction_refinement", d.reconstruction_refinement,
-                        "the reconstruction mesh's spacing is Delta / this (1: the coarse mesh)", 1, 16),
+                        "the reconstruction mesh's spacing is Delta / this (1: the coarse mesh; 0: the particle "
+                        "lattice's rows and columns, one column for an x-invariant scene)",
+                        0, 16),
           number_param("window_cutoff", d.window_cutoff,
                        "window values below this fraction of psi(0) are dropped from the assembled maps", 0.0, 1e-3),
           number_param("hold_fraction", d.hold_fraction,
@@ -36,32 +38,72 @@ ForceDensity2DOptions force_density_2d_options_from(const json& s) {
 }
 
 TensorMesh2D force_density_coarse_mesh(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta) {
-  if (!scene.box.periodic_x || !scene.box.periodic_y || scene.has_walls)
-    throw ConfigError("/scene", "the 2D force-density model needs a doubly periodic box (solids given by position); "
-                                "scene '" + scene.name + "' is not one");
-  return coarse_mesh_2d(scene, kernel, spacing_over_eta);  // the 2D reduced model's periodic mesh
+  if (!scene.box.periodic_x)
+    throw ConfigError("/scene", "the 2D force-density model needs a box periodic in x; scene '" + scene.name + "' is not");
+  if (scene.box.periodic_y == scene.has_walls)
+    throw ConfigError("/scene", "the 2D force-density model needs a box periodic in y or bounded by walls in y; scene '" +
+                                    scene.name + "' is neither");
+  const double target = spacing_over_eta * kernel.eta();
+  // x: one column for an x-invariant scene (its fields have no x-structure to resolve), else cell-centred.
+  UniformMesh1D x{0.0, scene.box.lx, 1, true, scene.box.lx};  // as the 1D model's column (core/reduced/reduced_grid.hpp)
+  if (!scene.x_invariant) {
+    const int nx = static_cast<int>(std::lround(scene.box.lx / target));
+    if (nx < 4)
+      throw ConfigError("/solver/spacing_over_eta",
+                        "fewer than 4 coarse nodes along x (" + std::to_string(nx) + "); lower spacing_over_eta");
+    x = UniformMesh1D::cell_centred(0.0, scene.box.lx, nx, true);
+  }
+  if (scene.box.periodic_y) {
+    const int ny = static_cast<int>(std::lround(scene.box.ly / target));
+    if (ny < 4)
+      throw ConfigError("/solver/spacing_over_eta",
+                        "fewer than 4 coarse nodes along y (" + std::to_string(ny) + "); lower spacing_over_eta");
+    return {x, UniformMesh1D::cell_centred(0.0, scene.box.ly, ny, true)};
+  }
+  // Walls in y: the 1D model's nodes, on both wall surfaces and evenly between ((5.6); reduced_grid.cpp).
+  return {x, make_reduced_grid(scene, kernel, spacing_over_eta, false, true).coarse};
 }
 
 TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorMesh2D& coarse, int refinement) {
-  const int nx = coarse.nx() * refinement, ny = coarse.ny() * refinement;
+  // x: the coarse columns refined (one column stays one: an x-invariant reconstruction); y: periodic, the coarse
+  // rows refined; walled, cell-centred across the whole box (walls included) at the coarse spacing / refinement.
+  // Refinement 0: the lattice's own columns and rows (the particles read their own node).
+  const bool lattice = refinement == 0;
+  const int nx = coarse.nx() == 1 ? 1 : lattice ? scene.nx : coarse.nx() * refinement;
+  const int ny = lattice              ? scene.ny
+                 : scene.box.periodic_y ? coarse.ny() * refinement
+                                        : static_cast<int>(std::lround(scene.box.ly * refinement / coarse.y.spacing));
   if (nx > scene.nx || ny > scene.ny)
     throw ConfigError("/solver/reconstruction_refinement",
                       "the reconstruction mesh (" + std::to_string(nx) + " x " + std::to_string(ny) +
                           ") is finer than the particle lattice (" + std::to_string(scene.nx) + " x " +
                           std::to_string(scene.ny) + "); lower the refinement");
   return {UniformMesh1D::cell_centred(0.0, scene.box.lx, nx, true),
-          UniformMesh1D::cell_centred(0.0, scene.box.ly, ny, true)};
+          UniformMesh1D::cell_centred(0.0, scene.box.ly, ny, scene.box.periodic_y)};
 }
 
 void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, const ForceDensity2DOptions& o) {
   const TensorMesh2D coarse = force_density_coarse_mesh(scene, kernel, o.spacing_over_eta);
   force_density_reconstruction_mesh(scene, coarse, o.reconstruction_refinement);
-  if (scene.van_der_waals)
-    throw ConfigError("/scene", "the 2D force-density model linearises a weakly compressible equation of state; "
-                                "scene '" + scene.name + "' uses van der Waals");
+  // The pressure is linearised about the lattice with one dP/dn for every pair, which a van der Waals equation of
+  // state with its own cross-phase attraction (7.1) does not have; in an x-invariant flow the density deviation stays
+  // uniform (ṅ cancels pair by pair along each row), so the pressure's linearisation is never used there.
+  if (scene.van_der_waals && !scene.x_invariant)
+    throw ConfigError("/scene", "the 2D force-density model linearises the pressure with one dP/dn for every pair; "
+                                "scene '" + scene.name + "' uses van der Waals and is not x-invariant");
   if (std::abs(scene.box.lx / scene.nx - scene.dx) > 1e-12 * scene.dx ||
       std::abs(scene.box.ly / scene.ny - scene.dx) > 1e-12 * scene.dx)
     throw ConfigError("/scene", "the 2D force-density model needs the square lattice to fill the periodic box");
+  if (scene.has_walls && scene.wall_model != WallModel::zero_velocity)
+    throw ConfigError("/scene/wall_model", "the 2D force-density model holds the solids at their known zero velocity; "
+                                           "use zero_velocity walls");
+  // The pair forces are linearised about the lattice's uniform number density: every solid particle a fluid particle
+  // reaches must itself see a full stencil, so a wall must be two SPH supports thick.
+  const double support = scene.smoothing_kernel().support();
+  if (scene.has_walls && std::min(scene.wall_lo, scene.box.ly - scene.wall_hi) < 2.0 * support)
+    throw ConfigError("/scene", "the walls are thinner than two SPH supports (" + std::to_string(2.0 * support) +
+                                    "): the solid particles next to the fluid would not see a full lattice; raise "
+                                    "eta_over_ly or n_y");
 }
 
 void check_force_density_closure(const json& deconvolver, const std::string& path) {
@@ -69,10 +111,12 @@ void check_force_density_closure(const json& deconvolver, const std::string& pat
   if (name == "cg" || name == "cgls")
     throw ConfigError(path + "/closure/deconvolver", "the steady solve probes the closure once, which needs it "
                                                      "linear in the data; " + closure_nonlinearity(deconvolver));
-  if (deconvolver.value("regularizer", "identity") != "identity")
+  const std::string regularizer = deconvolver.value("regularizer", "identity");
+  if (regularizer != "identity" && regularizer != "first_difference_zero_ends")
     throw ConfigError(path + "/closure/deconvolver/regularizer",
-                      "the velocity's unknowns are the reconstruction nodes outside the solid, not a tensor mesh: "
-                      "difference regularizers do not apply (use identity)");
+                      "the velocity's unknowns are the reconstruction nodes outside the solid, not a tensor mesh: use "
+                      "identity, or first_difference_zero_ends (the viscosity-weighted first difference over the "
+                      "reconstruction mesh's links, those into the solid to its known zero)");
 }
 
 }  // namespace closurelab

@@ -185,6 +185,7 @@ ForceDensity2DResult ForceDensitySolver2D::run() {
     res.message = issue;
   }
   res.free_nodes = static_cast<long>(free_.size());
+  res.reconstruction_nodes = recon_.size();
   res.deconvolution_matvecs = matvecs_;
   res.deconvolution_issues = deconvolution_issues_;
   res.deconvolution_seconds = deconv_seconds_;

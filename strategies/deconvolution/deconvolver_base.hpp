@@ -265,6 +265,7 @@ class DeconvolverBase : public Deconvolver {
     s.data_mesh = a.data_mesh;
     s.solution_mesh = a.solution_mesh;
     s.dimension = a.dimension;
+    s.difference_links = a.difference_links;  // as the link weights: relative, unchanged by the data's scale
     s.link_weights = a.link_weights;  // the prior of first_difference_zero_ends (scale-free: relative weights)
     return s;
   }

@@ -29,9 +29,15 @@ SpMat difference_1d(int n, int order) {
 
 // The first difference with the two end links to known zeros beyond the solution mesh ((n + 1) x n), each
 // link weighted by √w (w from the operator's link_weights, else 1): ‖Lx‖² = Σ_links w (x_{a+1} − x_a)², the
-// discrete (viscous) Dirichlet energy. 1D solution meshes only.
+// discrete (viscous) Dirichlet energy. 1D solution meshes only, or an operator that carries its own links
+// (ForwardOperator::difference_links).
 SpMat zero_end_difference(const ForwardOperator& a) {
   const int n = static_cast<int>(a.cols());
+  if (a.difference_links) {
+    if (a.difference_links->cols() != n || a.difference_links->rows() == 0)
+      throw ConfigError("/regularizer", "the operator's difference links must have one column per unknown");
+    return *a.difference_links;
+  }
   if (a.dimension == 2) throw ConfigError("/regularizer", "first_difference_zero_ends needs a 1D solution mesh");
   Eigen::VectorXd w = Eigen::VectorXd::Ones(n + 1);
   if (a.link_weights) {

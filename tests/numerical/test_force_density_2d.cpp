@@ -239,9 +239,21 @@ TEST(ForceDensity2D, BadInputIsAConfigErrorNamingThePath) {
             "/solver/reconstruction_refinement");
   EXPECT_EQ(path_of([&] { check_force_density_2d(*s.scene, *s.kernel, options({{"spacing_over_eta", 3.0}})); }),
             "/solver/spacing_over_eta");
-  const auto channel = reg.scenes.create(reg.scenes.resolve(json{{"name", "poiseuille-uniform"}}, "/scene"), "/scene");
+  // Walls are solids (tests/numerical/test_force_density_walls.cpp), but only at the solid's known zero velocity,
+  // and two SPH supports thick (n_y = 16: 3 eta' = 3 spacings, one support).
+  const auto channel_with = [&](const json& extra) {
+    json p = {{"name", "poiseuille-uniform"}};
+    p.update(extra);
+    return reg.scenes.create(reg.scenes.resolve(p, "/scene"), "/scene");
+  };
+  const auto channel = channel_with(json::object());
   const auto k = reg.kernels.create(json{{"name", "gaussian"}, {"eta", channel->eta}}, "/kernel");
-  EXPECT_EQ(path_of([&] { check_force_density_2d(*channel, *k, options()); }), "/scene");
+  EXPECT_EQ(path_of([&] { check_force_density_2d(*channel, *k, options()); }), "(no error)");
+  EXPECT_EQ(path_of([&] { check_force_density_2d(*channel_with({{"wall_model", "ghost_velocity"}}), *k, options()); }),
+            "/scene/wall_model");
+  const auto thin = channel_with({{"n_y", 16}});
+  const auto k_thin = reg.kernels.create(json{{"name", "gaussian"}, {"eta", thin->eta}}, "/kernel");
+  EXPECT_EQ(path_of([&] { check_force_density_2d(*thin, *k_thin, options({{"reconstruction_refinement", 1}})); }), "/scene");
   EXPECT_EQ(path_of([&] {  // a rule is served by the kind's two-pass rule
               check_force_density_closure(reg.deconvolvers.resolve(json{{"name", "tikhonov"}, {"rule", "gcv"}}, "/d"), "");
             }),

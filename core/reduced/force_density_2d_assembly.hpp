@@ -1,0 +1,118 @@
+#pragma once
+// The 2D force-density model's assembly helpers (core/reduced/force_density_2d.cpp only): a scratch row over the
+// reconstruction nodes, the window's 1D factor on an axis, the SPH pair stencil of the square lattice, and the
+// weighted first difference over the reconstruction mesh's links (the prior of first_difference_zero_ends).
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "core/averaging/averaging_kernel.hpp"
+#include "core/base/mesh.hpp"
+#include "core/sph/sph_kernel.hpp"
+
+namespace closurelab::force_density_detail {
+
+// A row over the reconstruction nodes, accumulated densely and read back sparsely.
+class ScratchRow {
+ public:
+  explicit ScratchRow(Eigen::Index n) : value_(Eigen::VectorXd::Zero(n)), seen_(static_cast<std::size_t>(n), 0) {}
+  void add(int node, double v) {
+    if (!seen_[static_cast<std::size_t>(node)]) {
+      seen_[static_cast<std::size_t>(node)] = 1;
+      touched_.push_back(node);
+    }
+    value_[node] += v;
+  }
+  // Calls f(node, value) for each entry, then clears.
+  template <class F>
+  void drain(F f) {
+    for (int n : touched_) {
+      if (value_[n] != 0.0) f(n, value_[n]);
+      value_[n] = 0.0;
+      seen_[static_cast<std::size_t>(n)] = 0;
+    }
+    touched_.clear();
+  }
+
+ private:
+  Eigen::VectorXd value_;
+  std::vector<std::uint8_t> seen_;
+  std::vector<int> touched_;
+};
+
+// The Gaussian window's 1D factor at the nodes of a periodic axis around q, periodic images summed; factors below
+// cutoff · φ(0) are dropped.
+inline std::vector<std::pair<int, double>> axis_window(const AveragingKernel& kernel, const UniformMesh1D& axis, double q,
+                                                double cutoff) {
+  std::vector<std::pair<int, double>> out;
+  for_nodes_within(axis, q, kernel.support_radius(), [&](int n, double d) { out.emplace_back(n, kernel.factor(d)); });
+  // for_nodes_within visits each image separately: merge the images of one node, then drop the tail.
+  std::sort(out.begin(), out.end());
+  std::size_t k = 0;
+  for (std::size_t u = 0; u < out.size(); ++u) {
+    if (k > 0 && out[k - 1].first == out[u].first)
+      out[k - 1].second += out[u].second;
+    else
+      out[k++] = out[u];
+  }
+  out.resize(k);
+  const double drop = cutoff * kernel.factor(0.0);
+  out.erase(std::remove_if(out.begin(), out.end(), [&](const auto& e) { return e.second < drop; }), out.end());
+  return out;
+}
+
+// The SPH pair stencil of the square lattice of spacing dx: the offsets within the smoothing function's support,
+// with F = w'(r)/r and q_ab = q_a − q_b = −(di, dj) dx; n0 = Σ w, the lattice's number density.
+struct Offset {
+  int di, dj;
+  double F, qx, qy;
+};
+inline std::vector<Offset> pair_stencil(const SmoothingKernel& w, double dx, double& n0) {
+  std::vector<Offset> stencil;
+  n0 = w.w(0.0);
+  const int reach = static_cast<int>(std::ceil(w.support() / dx));
+  for (int dj = -reach; dj <= reach; ++dj)
+    for (int di = -reach; di <= reach; ++di) {
+      const double r = std::hypot(di, dj) * dx;
+      if ((di == 0 && dj == 0) || r >= w.support()) continue;
+      stencil.push_back({di, dj, w.dw(r) / r, -di * dx, -dj * dx});
+      n0 += w.w(r);
+    }
+  return stencil;
+}
+
+// The weighted first difference over the links of the reconstruction mesh (ForwardOperator::difference_links): one row
+// per pair of neighbouring nodes (x and y; wrapped along a periodic axis; none along an axis of one node) with an
+// unknown at either end, √w (x_q − x_p), a node that is no unknown being a known zero (the solid's velocity) and
+// contributing no entry. w = weight(p, q) · (h_y / h_x)² for an x-link, weight(p, q) for a y-link: ‖Lx‖² is then the
+// Dirichlet energy Σ w |∇x|² h_x h_y up to the constant h_x / h_y. `unknown_of`: each node's unknown, or −1.
+template <class Weight>
+Eigen::SparseMatrix<double> link_differences(const TensorMesh2D& mesh, const std::vector<int>& unknown_of, int unknowns,
+                                             Weight weight) {
+  std::vector<Eigen::Triplet<double>> t;
+  int row = 0;
+  const double x_factor = std::pow(mesh.y.spacing / mesh.x.spacing, 2);
+  const auto link = [&](int p, int q, double factor) {
+    const int up = unknown_of[static_cast<std::size_t>(p)], uq = unknown_of[static_cast<std::size_t>(q)];
+    if (up < 0 && uq < 0) return;
+    const double s = std::sqrt(factor * weight(p, q));
+    if (up >= 0) t.emplace_back(row, up, -s);
+    if (uq >= 0) t.emplace_back(row, uq, s);
+    ++row;
+  };
+  const int nx = mesh.nx(), ny = mesh.ny();
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if (nx > 1 && (i + 1 < nx || mesh.x.periodic)) link(mesh.index(i, j), mesh.index((i + 1) % nx, j), x_factor);
+      if (ny > 1 && (j + 1 < ny || mesh.y.periodic)) link(mesh.index(i, j), mesh.index(i, (j + 1) % ny), 1.0);
+    }
+  Eigen::SparseMatrix<double> l(row, unknowns);
+  l.setFromTriplets(t.begin(), t.end());
+  return l;
+}
+
+}  // namespace closurelab::force_density_detail

@@ -90,27 +90,61 @@ void ForceDensitySolver2D::rates_from_reconstruction(const Eigen::VectorXd& rx, 
   an = continuity_x_ * rx + continuity_y_ * ry;
 }
 
+namespace {
+
+// big z = rhs by LU, equilibrated (rows, then columns, to unit largest entry): the momentum and density rows differ in
+// units, and free nodes with a small fluid fraction have small rows; the condition estimate is then of the problem
+// itself. False (the reason in `issue`) when the system is singular to working precision.
+bool equilibrated_solve(Eigen::MatrixXd big, const Eigen::VectorXd& rhs, Eigen::VectorXd& z, std::string& issue) {
+  const Eigen::VectorXd row_scale = big.rowwise().lpNorm<Eigen::Infinity>().cwiseMax(1e-300).cwiseInverse();
+  big = row_scale.asDiagonal() * big;
+  const Eigen::VectorXd col_scale = big.colwise().lpNorm<Eigen::Infinity>().transpose().cwiseMax(1e-300).cwiseInverse();
+  big = big * col_scale.asDiagonal();
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(big);
+  z = col_scale.cwiseProduct(lu.solve(row_scale.cwiseProduct(rhs)));
+  if (!z.allFinite() || lu.rcond() < 1e-15) {
+    std::ostringstream os;
+    os << "the steady system is singular to working precision (reciprocal condition " << lu.rcond() << ")";
+    issue = os.str();
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 bool ForceDensitySolver2D::steady_solve(std::string& issue) {
   // The rate is affine in the state z = (v̄_x, v̄_y, n̄) on the free nodes: rate = M z + c. Probed on unit data
   // (the closure is linear: check_force_density_closure), then M z = −c solved with the total density deviation
   // Σ n̄ ρ̄-weights = 0 bordering it: the rate does not see a uniform n̄ (a uniform pressure exerts no force on
-  // the lattice), so M has that null direction.
+  // the lattice), so M has that null direction. In an x-invariant scene v̄_y and n̄ stay zero (ṅ cancels pair by pair
+  // along each lattice row, so nothing drives them) and the x-momentum alone is solved: the pressure's
+  // linearisation, which a van der Waals scene does not have, is not used.
   const auto t0 = std::chrono::steady_clock::now();
   const Eigen::Index f = static_cast<Eigen::Index>(free_.size());
   const Eigen::MatrixXd unit = Eigen::MatrixXd::Identity(f, f);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(f);
   Eigen::MatrixXd xv, xn;
-  if (!deconvolve_columns(velocity_, unit, xv, issue) || !deconvolve_columns(density_, unit, xn, issue)) return false;
-  Eigen::VectorXd zero = Eigen::VectorXd::Zero(f), x0v, x0n;  // the closure's response to zero data (affine part)
-  if (!deconvolve(velocity_, zero, x0v, issue) || !deconvolve(density_, zero, x0n, issue)) return false;
+  Eigen::VectorXd x0v, x0n;  // the closure's response to zero data (affine part)
+  if (!deconvolve_columns(velocity_, unit, xv, issue) || !deconvolve(velocity_, zero, x0v, issue)) return false;
   // The blocks of M on every node (a product of the full map, no copy of it), then the free rows.
   const auto free_rows_of = [&](const Eigen::MatrixXd& full) {
     Eigen::MatrixXd out(f, full.cols());
     for (Eigen::Index k = 0; k < f; ++k) out.row(k) = full.row(free_[static_cast<std::size_t>(k)]);
     return out;
   };
-  const Eigen::MatrixXd mvv = free_rows_of(viscous_ * xv), mxn = free_rows_of(pressure_x_ * xn),
-                        myn = free_rows_of(pressure_y_ * xn), mnx = free_rows_of(continuity_x_ * xv),
-                        mny = free_rows_of(continuity_y_ * xv);
+  const Eigen::MatrixXd mvv = free_rows_of(viscous_ * xv);
+  Eigen::VectorXd z;
+  if (scene_.x_invariant) {
+    probe_seconds_ = seconds_since(t0);
+    if (!equilibrated_solve(mvv, -on_free(viscous_ * x0v + body_x_), z, issue)) return false;
+    vx_ = z;
+    vy_ = n_ = zero;
+    return true;
+  }
+  if (!deconvolve_columns(density_, unit, xn, issue) || !deconvolve(density_, zero, x0n, issue)) return false;
+  const Eigen::MatrixXd mxn = free_rows_of(pressure_x_ * xn), myn = free_rows_of(pressure_y_ * xn),
+                        mnx = free_rows_of(continuity_x_ * xv), mny = free_rows_of(continuity_y_ * xv);
   Eigen::MatrixXd big = Eigen::MatrixXd::Zero(3 * f + 1, 3 * f + 1);
   big.block(0, 0, f, f) = mvv;
   big.block(0, 2 * f, f, f) = mxn;
@@ -126,20 +160,7 @@ bool ForceDensitySolver2D::steady_solve(std::string& issue) {
   rhs.segment(f, f) = -on_free(viscous_ * x0v + pressure_y_ * x0n + body_y_);
   rhs.segment(2 * f, f) = -on_free(continuity_x_ * x0v + continuity_y_ * x0v);
   probe_seconds_ = seconds_since(t0);
-  // Equilibrated (rows, then columns, to unit largest entry): the momentum and density rows differ in units, and
-  // free nodes with a small fluid fraction have small rows; the condition estimate is then of the problem itself.
-  const Eigen::VectorXd row_scale = big.rowwise().lpNorm<Eigen::Infinity>().cwiseMax(1e-300).cwiseInverse();
-  big = row_scale.asDiagonal() * big;
-  const Eigen::VectorXd col_scale = big.colwise().lpNorm<Eigen::Infinity>().transpose().cwiseMax(1e-300).cwiseInverse();
-  big = big * col_scale.asDiagonal();
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(big);
-  const Eigen::VectorXd z = col_scale.cwiseProduct(lu.solve(row_scale.cwiseProduct(rhs)));
-  if (!z.allFinite() || lu.rcond() < 1e-15) {
-    std::ostringstream os;
-    os << "the steady system is singular to working precision (reciprocal condition " << lu.rcond() << ")";
-    issue = os.str();
-    return false;
-  }
+  if (!equilibrated_solve(std::move(big), rhs, z, issue)) return false;
   vx_ = z.segment(0, f);
   vy_ = z.segment(f, f);
   n_ = z.segment(2 * f, f);

@@ -181,6 +181,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     json fields = {{"x", mesh.x.nodes()}, {"y", mesh.y.nodes()}, {"reduced", field_json(reduced_field)},
                    {"outside_solid", outside}, {"reduced_density_deviation", reduced.density}};
     row["status"] = row_status(reduced.status);
+    if (reduced.status != Status::converged) row["message"] = reduced.message;
     row["reduced_model"] = reduced.to_json();
     if (two_pass) row["reduced_model"]["two_pass_rule"] = two_pass_record;
     if (direct) {

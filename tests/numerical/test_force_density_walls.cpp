@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <random>
+#include <tuple>
 
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
@@ -30,6 +31,7 @@ struct Channel {
 Channel make_channel(const json& extra = json::object()) {
   const Registry& reg = builtin_registry();
   json s = {{"name", "poiseuille-uniform"}, {"n_y", 48}, {"n_x", 12}, {"eta_over_ly", 1.0 / 16}};
+  if (extra.value("name", "poiseuille-uniform") != "poiseuille-uniform") s = json::object();
   s.update(extra);
   Channel c;
   c.scene = reg.scenes.create(reg.scenes.resolve(s, "/scene"), "/scene");
@@ -107,11 +109,15 @@ TEST(ForceDensityWalls, ViscousMapIsTheEngineAccelerationsAveragedInTheWalledBox
 
 // C = I, or the viscous-dissipation prior (first_difference_zero_ends: the 1D model's links, the end links to the
 // wall rows' known zero, and the 2D model's links over the reconstruction mesh, those into the wall to its zero).
-class ForceDensityWallsPrior : public ::testing::TestWithParam<const char*> {};
+// The two-phase layered channel (van der Waals, two viscosities: the links weighted by the harmonic mean) too: in an
+// x-invariant scene the 2D model solves the x-momentum alone, as the 1D model does.
+class ForceDensityWallsPrior : public ::testing::TestWithParam<std::tuple<const char*, const char*>> {};
 
 TEST_P(ForceDensityWallsPrior, ChannelEqualsTheOneDimensionalNearWallModel) {
-  Channel c = make_channel({{"n_y", 48}});
-  const std::string prior = GetParam();
+  const std::string scene_name = std::get<0>(GetParam()), prior = std::get<1>(GetParam());
+  Channel c = make_channel(scene_name == "poiseuille-uniform"
+                               ? json{{"n_y", 48}}
+                               : json{{"name", scene_name}, {"case", "case3"}, {"n_y", 48}, {"n_x", 12}, {"eta_over_l", 1.0 / 16}});
   auto dv = tikhonov(1e-6, prior), dn = tikhonov(1e-6, prior), d1 = tikhonov(1e-6, prior);
   ForceDensitySolver2D two(*c.scene, *c.kernel, *dv, *dn, lattice_rows_options());
   const auto quadrature = builtin_registry().quadratures.create(json{{"name", "exact"}}, "/q");
@@ -154,4 +160,6 @@ TEST_P(ForceDensityWallsPrior, ChannelEqualsTheOneDimensionalNearWallModel) {
   EXPECT_LT(max_abs(r2.density), 1e-12);
 }
 
-INSTANTIATE_TEST_SUITE_P(Priors, ForceDensityWallsPrior, ::testing::Values("identity", "first_difference_zero_ends"));
+INSTANTIATE_TEST_SUITE_P(Priors, ForceDensityWallsPrior,
+                         ::testing::Combine(::testing::Values("poiseuille-uniform", "layered-two-phase"),
+                                            ::testing::Values("identity", "first_difference_zero_ends")));

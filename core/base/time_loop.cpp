@@ -174,10 +174,22 @@ void check_steady_reach(const json& s, double spacings, const std::string& path)
   if (d <= kMaxSteadyDistance) return;
   std::ostringstream os;
   os << "steady_window " << s.at("steady_window").get<int>() << " steps at kappa " << s.at("kappa").get<double>()
-     << " with steady_tolerance " << s.at("steady_tolerance").get<double>() << " across " << spacings
-     << " spacings: a run called steady could still be " << d * 100 << " % from steady state (at least; at most "
+     << " with steady_tolerance " << s.at("steady_tolerance").get<double>() << " across a relaxation length of "
+     << spacings << " spacings: a run called steady could still be " << d * 100 << " % from steady state (at least; at most "
      << kMaxSteadyDistance * 100 << " % is allowed); lengthen the window or tighten the tolerance";
   throw ConfigError(path + "/steady_window", os.str());
+}
+
+void check_steps_reach_target(const json& s, double max_dt, const std::string& path) {
+  if (s.at("mode") != "target_time") return;
+  const double steps = s.at("target_time").get<double>() / max_dt;
+  const auto max_steps = s.at("max_steps").get<std::int64_t>();
+  if (!(steps > static_cast<double>(max_steps))) return;
+  std::ostringstream os;
+  os << "target_time " << s.at("target_time").get<double>() << " needs at least " << steps << " steps of at most dt = "
+     << max_dt << ", more than max_steps = " << max_steps << ": the run could only give up; shorten target_time or "
+     << "raise max_steps";
+  throw ConfigError(path + "/target_time", os.str());
 }
 
 }  // namespace closurelab

@@ -72,5 +72,9 @@ double steady_distance_bound(const json& resolved, double spacings);
 // Refuses (ConfigError at `path`/steady_window) a steady section whose steady_distance_bound exceeds
 // kMaxSteadyDistance: its `converged` could be far from steady state.
 void check_steady_reach(const json& resolved, double spacings, const std::string& path);
+// Refuses (ConfigError at `path`/target_time) a target_time section that cannot reach its target within max_steps
+// when no step exceeds `max_dt` (a model's largest step): it needs at least target_time / max_dt steps, and the run
+// could only give up.
+void check_steps_reach_target(const json& resolved, double max_dt, const std::string& path);
 
 }  // namespace closurelab

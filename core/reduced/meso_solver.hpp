@@ -169,6 +169,11 @@ ReducedGrid reduced_grid(const Scene& scene, const AveragingKernel& kernel, cons
 // bound to its operator when the cell runs (a configuration that does not fit the operator fails that cell).
 void check_meso_solver(const Scene& scene, const AveragingKernel& kernel, const StressQuadrature& quadrature,
                        const MesoSolverOptions& options);
+// The run-control checks of a resolved solver section that need the scene and the coarse mesh, before anything
+// runs: check_stepped_run (core/sph/sph_run.hpp) at the coarse spacing, every step at most (5.22)'s
+// kappa·rho Δ²/mu_max (ConfigError at `path`/target_time or `path`/steady_window).
+void check_meso_run(const Scene& scene, const AveragingKernel& kernel, const json& resolved_solver,
+                    const MesoSolverOptions& options, const std::string& path);
 
 class MesoSolver {
  public:

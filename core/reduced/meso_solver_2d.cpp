@@ -8,6 +8,7 @@
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
 #include "core/closure/reconstruction.hpp"
+#include "core/sph/sph_run.hpp"
 
 namespace closurelab {
 
@@ -99,6 +100,13 @@ void check_meso_solver_2d(const Scene& scene, const AveragingKernel& kernel, con
   } catch (const ConfigError& e) {
     throw under_quadrature(e);
   }
+}
+
+void check_meso_run_2d(const Scene& scene, const AveragingKernel& kernel, const json& solver,
+                       const MesoSolver2DOptions& o, const std::string& path) {
+  const TensorMesh2D coarse = coarse_mesh_2d(scene, kernel, o.spacing_over_eta);
+  const double h = std::min(coarse.x.spacing, coarse.y.spacing);
+  check_stepped_run(scene, solver, h, coarse_time_step(o.kappa, scene.rho0, h, scene.max_viscosity(), 0.0), path);
 }
 
 MesoSolver2D::MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, Deconvolver& deconvolver,

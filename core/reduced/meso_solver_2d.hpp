@@ -72,6 +72,10 @@ Eigen::VectorXd face_difference(const TensorMesh2D& cells, const Eigen::VectorXd
 // The structural checks before any work (mesh, each quadrature's fit on its face mesh), for validating a spec.
 void check_meso_solver_2d(const Scene& scene, const AveragingKernel& kernel, const StressQuadrature& quadrature,
                           const MesoSolver2DOptions& options);
+// check_stepped_run (core/sph/sph_run.hpp) at the coarse mesh's smaller spacing Δ, every step at most
+// kappa·rho Δ²/mu_max: ConfigError at `path`/target_time or `path`/steady_window.
+void check_meso_run_2d(const Scene& scene, const AveragingKernel& kernel, const json& resolved_solver,
+                       const MesoSolver2DOptions& options, const std::string& path);
 
 class MesoSolver2D {
  public:

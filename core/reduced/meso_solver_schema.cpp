@@ -3,6 +3,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/reduced/implicit_closure.hpp"
+#include "core/sph/sph_run.hpp"
 
 namespace closurelab {
 
@@ -57,6 +58,12 @@ void check_implicit_closure(const json& solver, const json& deconvolver, const s
                       "backward_euler needs a closure linear in the coarse velocity (landweber, landweber_relaxed, "
                       "tikhonov or tsvd, a rule chosen by the two-pass rule); " + closure_nonlinearity(deconvolver) +
                           " (/closure/deconvolver); use time_integration explicit");
+}
+
+void check_meso_run(const Scene& scene, const AveragingKernel& kernel, const json& solver, const MesoSolverOptions& o,
+                    const std::string& path) {
+  const double h = reduced_grid(scene, kernel, o).coarse.spacing;
+  check_stepped_run(scene, solver, h, coarse_time_step(o.kappa, scene.rho0, h, scene.max_viscosity(), 0.0), path);
 }
 
 MesoSolverOptions meso_options_from(const json& s) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "core/base/errors.hpp"
@@ -104,26 +105,36 @@ SphRunOptions sph_run_options_from(const json& s) {
   return o;
 }
 
-void check_run_can_finish(const Scene& scene, const json& s, const std::string& path) {
-  if (s.at("mode") != "target_time") return;
+double direct_step_bound(const Scene& scene, double kappa) {
   const double dx = scene.dx;
   double dt = scene.rho0 * dx * dx / scene.max_viscosity();
   if (scene.sound_speed > 0.0) dt = std::min(dt, dx / scene.sound_speed);
-  dt *= s.at("kappa").get<double>();
-  const double steps = s.at("target_time").get<double>() / dt;
-  const auto max_steps = s.at("max_steps").get<std::int64_t>();
-  if (!(steps > static_cast<double>(max_steps))) return;
-  std::ostringstream os;
-  os << "target_time " << s.at("target_time").get<double>() << " needs at least " << steps << " steps of at most dt = "
-     << dt << ", more than max_steps = " << max_steps << ": the run could only give up; shorten target_time or "
-     << "raise max_steps";
-  throw ConfigError(path + "/target_time", os.str());
+  return kappa * dt;
+}
+
+void check_run_can_finish(const Scene& scene, const json& s, const std::string& path) {
+  check_steps_reach_target(s, direct_step_bound(scene, s.at("kappa").get<double>()), path);
+}
+
+double steady_reach_spacings(const Scene& scene, double spacing) {
+  // A porous medium's slowest mode depends on its solid (none stated): no bound, no check.
+  if (scene.permeability || !(spacing > 0.0)) return 0.0;
+  // Rate 2 k^2 nu = pi^2 nu / W^2 with W = pi / (sqrt(2) k).
+  if (scene.cellular_mode) return std::numbers::pi / (std::sqrt(2.0) * scene.cellular_mode->wavenumber * spacing);
+  if (scene.has_walls) return (scene.wall_hi - scene.wall_lo) / spacing;
+  // Rate q^2 nu = pi^2 nu / W^2 with W = pi / q.
+  if (scene.steady_sine_mode) return std::numbers::pi / (scene.steady_sine_mode->wavenumber * spacing);
+  return 0.0;
+}
+
+void check_stepped_run(const Scene& scene, const json& s, double spacing, double max_dt, const std::string& path) {
+  check_steps_reach_target(s, max_dt, path);
+  const double spacings = steady_reach_spacings(scene, spacing);
+  if (spacings > 0.0) check_steady_reach(s, spacings, path);
 }
 
 void check_direct_run(const Scene& scene, const json& s, const std::string& path) {
-  check_run_can_finish(scene, s, path);
-  if (scene.has_walls && !scene.permeability && !scene.cellular_mode)
-    check_steady_reach(s, (scene.wall_hi - scene.wall_lo) / scene.dx, path);
+  check_stepped_run(scene, s, scene.dx, direct_step_bound(scene, s.at("kappa").get<double>()), path);
 }
 
 }  // namespace closurelab

@@ -43,13 +43,24 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& particles, const
 // SphRunOptions{}'s (one source), and sph_run_options_from(resolved defaults) == SphRunOptions{} (tested).
 ParamSchema sph_solver_schema();
 SphRunOptions sph_run_options_from(const json& resolved_solver);
-// Refuses (ConfigError at `path`/target_time) a target_time run that cannot reach its target within max_steps:
-// the step is at most kappa·min(dx/c, rho dx²/mu_max) (the particles at rest; it only shrinks as they move), so
-// it needs at least target_time / that steps. `path` is the solver section's JSON path.
+// The direct model's largest step, kappa·min(dx/c, rho dx²/mu_max) (the particles at rest; it only shrinks as they
+// move).
+double direct_step_bound(const Scene& scene, double kappa);
+// Refuses (ConfigError at `path`/target_time) a target_time run that cannot reach its target within max_steps
+// (check_steps_reach_target at direct_step_bound). `path` is the solver section's JSON path.
 void check_run_can_finish(const Scene& scene, const json& resolved_solver, const std::string& path);
-// The checks of a direct run's resolved solver section before anything runs, for every kind that runs one: it can
-// finish (check_run_can_finish) and, in a channel, a run called steady is near steady state (check_steady_reach
-// across the walls' distance in spacings).
+// The scene's slowest relaxation as steady_distance_bound reads it: the width, in units of `spacing`, of a channel
+// between walls whose slowest mode relaxes as slowly, rho W²/(pi² mu_max). A channel: its walls' distance; a
+// cellular mode relaxing at 2 k² nu: W = pi / (sqrt 2 k); a single sine mode (kolmogorov) at q² nu: W = pi / q.
+// 0 where the scene states none (a porous medium): no steady-reach check.
+double steady_reach_spacings(const Scene& scene, double spacing);
+// The checks of a time-stepped model's resolved solver section (the direct SPH, the reduced models) before anything
+// runs, `spacing` its mesh spacing h and `max_dt` its largest step, which must be at most kappa·rho h²/mu_max: a
+// target_time run can finish (check_steps_reach_target) and a run called steady is near steady state
+// (check_steady_reach across steady_reach_spacings, where the scene states its relaxation).
+void check_stepped_run(const Scene& scene, const json& resolved_solver, double spacing, double max_dt,
+                       const std::string& path);
+// check_stepped_run for the direct SPH: spacing dx, steps of at most direct_step_bound.
 void check_direct_run(const Scene& scene, const json& resolved_solver, const std::string& path);
 
 }  // namespace closurelab

@@ -1,18 +1,53 @@
 #include "experiments/kinds/direct_reference.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "core/averaging/averaging.hpp"
 #include "core/sph/engine_version.hpp"
 
 namespace closurelab {
 
+namespace {
+std::string short_number(double v) {
+  std::ostringstream os;
+  os.precision(3);
+  os << v;
+  return os.str();
+}
+}  // namespace
+
 DirectReference run_direct_reference(const Scene& scene, const AveragingKernel& kernel, SphRunOptions options,
                                      const TensorMesh2D& observed) {
   DirectReference ref{scene.make_particles(), {}};
-  options.observable = [&](const ParticleSystem& p) {
-    return average_particles(p, scene.box, kernel, observed, AveragingRequest{}).vx;
+  // Averaging onto a fine observation mesh can take longer than the steps between two tests (2D at
+  // observe_spacing_over_eta = 0.01: 2.6e6 nodes, about 12 s each, 72 s with one progress line before): say so
+  // up front for a large mesh, and report each average slower than kSlowObservation, at most once per progress interval.
+  constexpr double kSlowObservation = 2.0;  // seconds
+  constexpr int kLargeObservation = 100000;  // nodes
+  const std::function<void(const std::string&)> progress = options.progress;
+  if (progress && observed.size() > kLargeObservation)
+    progress("the steady test averages " + std::to_string(ref.particles.size()) + " particles onto " +
+             std::to_string(observed.size()) + " nodes (observe spacing " + short_number(observed.y.spacing) +
+             ") every " + std::to_string(options.steady_window) + " steps");
+  using clock = std::chrono::steady_clock;
+  auto last_report = clock::now() - std::chrono::hours(1);
+  int averages = 0;
+  options.observable = [&, progress](const ParticleSystem& p) {
+    const auto t0 = clock::now();
+    Eigen::VectorXd v = average_particles(p, scene.box, kernel, observed, AveragingRequest{}).vx;
+    const auto t1 = clock::now();
+    ++averages;
+    const double took = std::chrono::duration<double>(t1 - t0).count();
+    if (progress && took >= kSlowObservation &&
+        std::chrono::duration<double>(t1 - last_report).count() >= options.progress_seconds) {
+      last_report = t1;
+      progress("steady test: average " + std::to_string(averages) + " onto " + std::to_string(observed.size()) +
+               " nodes took " + short_number(took) + " s (observe_spacing_over_eta sets this mesh; coarser is faster)");
+    }
+    return v;
   };
   ref.run = run_direct_sph(scene, ref.particles, options);
   return ref;

@@ -106,6 +106,7 @@ class ReducedModel : public ExperimentKind {
     // strategies are set up once, when the cell runs.
     try {
       check_meso_solver(*scene, *kernel, *reg.quadratures.create(out["quadrature"], "/quadrature"), options(out));
+      check_meso_run(*scene, *kernel, out["solver"], options(out), "/solver");
     } catch (const ConfigError& e) {
       throw ConfigError(path + e.path(), e.message());
     }

@@ -96,11 +96,14 @@ class ReducedModel2D : public ExperimentKind {
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
     check_time_loop(out["reference"]["solver"], path + "/reference/solver");
+    if (out["reference"]["direct_sph"].get<bool>())
+      check_direct_run(*scene, out["reference"]["solver"], path + "/reference/solver");
     out["transient"] = resolve_section(cell, "transient", transient_schema(), path);
     check_snapshot_times(out["transient"]["t_over_tau"], path + "/transient/t_over_tau");
     out["timing"] = resolve_section(cell, "timing", reduced_timing_schema(), path);
     try {
       check_meso_solver_2d(*scene, *kernel, *reg.quadratures.create(out["quadrature"], "/quadrature"), options(out));
+      check_meso_run_2d(*scene, *kernel, out["solver"], options(out), "/solver");
     } catch (const ConfigError& e) {
       throw ConfigError(path + e.path(), e.message());
     }

@@ -79,8 +79,8 @@ ReducedGrid meshes(const Scene& scene, const AveragingKernel& kernel, double spa
   }
 }
 
-// The snapshot's particles checked against the scene: inside the box, known phases; held-fixed flags from
-// the scene's walls when the file has none.
+// The snapshot's particles checked against the scene: inside the box, known phases, the scene's number of
+// particles; held-fixed flags from the scene's walls when the file has none.
 ParticleSystem particles_for(const Scene& scene, ParticleSnapshot snap, const std::string& file) {
   ParticleSystem& p = snap.particles;
   if (p.size() == 0) throw ConfigError("/snapshot/file", "'" + file + "' holds no particles");
@@ -95,6 +95,14 @@ ParticleSystem particles_for(const Scene& scene, ParticleSnapshot snap, const st
                                               std::to_string(scene.phase_viscosity.size()));
     if (!snap.has_fixed) p.fixed[a] = scene.is_wall(p.y[a]) ? 1 : 0;
   }
+  // The pair forces take the scene's particle mass, so the snapshot must hold the scene's number of particles
+  // (the box full at its lattice density; particles are conserved): a file cut at a line boundary, which every
+  // line-by-line check passes, holds fewer (issue 25).
+  const std::size_t expected = scene.make_particles().size();
+  if (p.size() != expected)
+    throw ConfigError("/snapshot/file", "'" + file + "' holds " + std::to_string(p.size()) + " particles, the scene '" +
+                                            scene.name + "' has " + std::to_string(expected) +
+                                            ": a file cut short, or a snapshot of another scene or resolution");
   return p;
 }
 

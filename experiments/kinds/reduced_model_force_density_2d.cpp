@@ -11,6 +11,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/metrics.hpp"
 #include "core/reduced/force_density_2d.hpp"
+#include "core/sph/sph_run.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/permeability_validation.hpp"
 #include "experiments/kinds/reduced_model_2d.hpp"
@@ -92,6 +93,8 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
     check_time_loop(out["reference"]["solver"], path + "/reference/solver");
+    if (out["reference"]["direct_sph"].get<bool>())
+      check_direct_run(*scene, out["reference"]["solver"], path + "/reference/solver");
     out["timing"] = resolve_section(cell, "timing", reduced_timing_schema(), path);
     try {
       check_force_density_2d(*scene, *kernel, options(out));

@@ -61,7 +61,7 @@ TensorMesh2D force_density_coarse_mesh(const Scene& scene, const AveragingKernel
     return {x, UniformMesh1D::cell_centred(0.0, scene.box.ly, ny, true)};
   }
   // Walls in y: the 1D model's nodes, on both wall surfaces and evenly between ((5.6); reduced_grid.cpp).
-  return {x, make_reduced_grid(scene, kernel, spacing_over_eta, false, true).coarse};
+  return {x, wall_to_wall_nodes(scene, target)};
 }
 
 TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorMesh2D& coarse, int refinement) {

@@ -6,6 +6,14 @@
 
 namespace closurelab {
 
+UniformMesh1D wall_to_wall_nodes(const Scene& scene, double target_spacing) {
+  const double w = scene.wall_hi - scene.wall_lo;
+  const int k = static_cast<int>(std::lround(w / target_spacing));
+  if (k < 4)
+    throw ConfigError("/solver/spacing_over_eta", "fewer than 4 coarse intervals across the channel (eta' too large)");
+  return UniformMesh1D{scene.wall_lo, w / k, k + 1, false, 0.0};  // nodes on both walls (5.6)
+}
+
 ReducedGrid make_reduced_grid(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta,
                               bool staggered, bool walls_are_data) {
   if (!scene.x_invariant) throw ConfigError("/scene", "the coarse solver handles x-invariant scenes only");
@@ -22,11 +30,9 @@ ReducedGrid make_reduced_grid(const Scene& scene, const AveragingKernel& kernel,
     if (staggered) g.stress_axis.origin += 0.5 * g.coarse.spacing;
     return g;
   }
+  g.coarse = wall_to_wall_nodes(scene, target);
   const double w = scene.wall_hi - scene.wall_lo;
-  const int k = static_cast<int>(std::lround(w / target));
-  if (k < 4)
-    throw ConfigError("/solver/spacing_over_eta", "fewer than 4 coarse intervals across the channel (eta' too large)");
-  g.coarse = UniformMesh1D{scene.wall_lo, w / k, k + 1, false, 0.0};  // nodes on both walls (5.6)
+  const int k = g.coarse.count - 1;
   // The deconvolution's data: the interior nodes. The wall nodes carry the imposed v̄ = 0 of (5.6), not an
   // average (the real average there is not zero: the window holds fluid), so they are not data; their
   // solution value is the particle velocity on the wall surface, zero by no slip. Used as data, the false

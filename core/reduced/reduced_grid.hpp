@@ -19,6 +19,10 @@ struct ReducedGrid {
   bool walls_are_data = false;
 };
 
+// The coarse nodes across a walled channel: on both wall surfaces ((5.6)) and evenly between, at the spacing nearest
+// target_spacing; ConfigError at /solver/spacing_over_eta when fewer than 4 intervals fit.
+UniformMesh1D wall_to_wall_nodes(const Scene& scene, double target_spacing);
+
 // ConfigError at /scene (not x-invariant) or /solver/spacing_over_eta (fewer than 4 coarse intervals).
 ReducedGrid make_reduced_grid(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta,
                               bool staggered, bool walls_are_data);

@@ -3,6 +3,7 @@
 
 #include "core/scenes/analytic.hpp"
 #include "core/scenes/cellular_scene.hpp"
+#include "core/scenes/cylinder_channel_scene.hpp"
 #include "core/scenes/cylinder_lattice_scene.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/memory_limit.hpp"
@@ -188,6 +189,7 @@ void register_scenes(Registry& r) {
   register_layered_scene(r);
   register_cellular_scene(r);
   register_cylinder_lattice_scene(r);
+  register_cylinder_channel_scene(r);
   r.scenes.add({"poiseuille-uniform", "Poiseuille flow between walls at 3 eta' and L_y - 3 eta', uniform force (par. 5)",
                 channel_schema()},
                [](const json& p) {

@@ -4,7 +4,8 @@
 //   - on an x-invariant channel, the 2D model at n_x = 1 with the reconstruction on the lattice rows is the 1D
 //     model's near-wall formulation (force-density balance, coarse–fine Tikhonov, evolved wall-surface nodes): the
 //     same coarse nodes, the same forward operator and force-density map to round-off, and the same steady state;
-//   - bad input: ghost-velocity walls, walls thinner than two SPH supports.
+//   - the cylinder-channel scene (walls and a cylinder, not x-invariant): the viscous and continuity maps against the
+//     engine, the steady solve zeroing the rates; a cylinder that leaves no room to the walls is refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -163,3 +164,86 @@ TEST_P(ForceDensityWallsPrior, ChannelEqualsTheOneDimensionalNearWallModel) {
 INSTANTIATE_TEST_SUITE_P(Priors, ForceDensityWallsPrior,
                          ::testing::Combine(::testing::Values("poiseuille-uniform", "layered-two-phase"),
                                             ::testing::Values("identity", "first_difference_zero_ends")));
+
+namespace {
+
+Channel make_cylinder_channel(const json& extra = json::object()) {
+  json s = {{"name", "cylinder-channel"}, {"n", 32}, {"eta_over_l", 0.0625}, {"radius_over_length", 0.1}};
+  s.update(extra);
+  return make_channel(s);
+}
+
+}  // namespace
+
+TEST(ForceDensityWalls, CylinderChannelMapsAreTheEngineAccelerationsAndDensityRate) {
+  Channel c = make_cylinder_channel();
+  auto dv = tikhonov(1e-6), dn = tikhonov(1e-6);
+  ForceDensitySolver2D solver(*c.scene, *c.kernel, *dv, *dn, force_density_2d_options_from(resolve_params(
+                                                                   json::object(), force_density_2d_schema(), "/solver", {})));
+  ASSERT_GT(solver.coarse_mesh().nx(), 1);
+  EXPECT_FALSE(solver.coarse_mesh().y.periodic);
+  const Eigen::Index nr = solver.reconstruction_mesh().size();
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd rx(nr), ry(nr);
+  for (Eigen::Index k = 0; k < nr; ++k) rx[k] = u(gen), ry[k] = u(gen);
+  const Eigen::VectorXd vx = solver.interpolate_to_particles(rx), vy = solver.interpolate_to_particles(ry);
+  const auto average = [&](ParticleSystem ps, const Eigen::VectorXd& q) {
+    for (std::size_t a = 0; a < ps.size(); ++a) ps.vx[a] = q[static_cast<Eigen::Index>(a)], ps.vy[a] = 0.0;
+    return average_particles(ps, c.scene->box, *c.kernel, solver.coarse_mesh(), AveragingRequest{}).vx;
+  };
+  // The viscous force: the engine's accelerations with the fluid at the interpolated velocities, the solids at rest.
+  ParticleSystem ps = c.scene->make_particles();
+  for (std::size_t a = 0; a < ps.size(); ++a)
+    if (!ps.fixed[a]) ps.vx[a] = vx[static_cast<Eigen::Index>(a)], ps.vy[a] = vy[static_cast<Eigen::Index>(a)];
+  SphEngine engine(*c.scene, ps);
+  engine.compute_accelerations();
+  Eigen::VectorXd ax = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ps.size())), ay = ax;
+  for (std::int32_t a : engine.moving()) ax[a] = engine.ax()[static_cast<std::size_t>(a)], ay[a] = engine.ay()[static_cast<std::size_t>(a)];
+  Eigen::VectorXd mx, my, mn;
+  solver.rates_from_reconstruction(rx, ry, Eigen::VectorXd::Zero(nr), mx, my, mn);
+  const Eigen::VectorXd ref_x = average(c.scene->make_particles(), ax), ref_y = average(c.scene->make_particles(), ay);
+  EXPECT_LT(max_abs(mx - ref_x), 1e-8 * max_abs(ref_x));
+  EXPECT_LT(max_abs(my - ref_y), 1e-8 * max_abs(ref_y));
+  // The continuity map: the engine's summation density with the fluid moved along V (central difference).
+  const double h = 1e-5 * c.scene->dx;
+  const auto density_at = [&](double step) {
+    ParticleSystem moved = c.scene->make_particles();
+    for (std::size_t a = 0; a < moved.size(); ++a)
+      if (!moved.fixed[a]) moved.x[a] += step * vx[static_cast<Eigen::Index>(a)], moved.y[a] += step * vy[static_cast<Eigen::Index>(a)];
+    SphEngine e(*c.scene, moved);
+    e.compute_accelerations();
+    const std::vector<double>& n = e.number_density();
+    return Eigen::Map<const Eigen::VectorXd>(n.data(), static_cast<Eigen::Index>(n.size())).eval();
+  };
+  const Eigen::VectorXd ref_n = average(c.scene->make_particles(), (density_at(h) - density_at(-h)) / (2.0 * h));
+  // (the mass-weighted average equals Σψ ṅ / Σψ here: every particle has the same mass)
+  EXPECT_LT(max_abs(mn - ref_n), 1e-6 * max_abs(ref_n));
+}
+
+TEST(ForceDensityWalls, CylinderChannelSteadySolveZeroesTheRates) {
+  Channel c = make_cylinder_channel();
+  auto dv = tikhonov(1e-6), dn = tikhonov(1e-6);
+  ForceDensitySolver2D solver(*c.scene, *c.kernel, *dv, *dn, force_density_2d_options_from(resolve_params(
+                                                                   json::object(), force_density_2d_schema(), "/solver", {})));
+  const ForceDensity2DResult r = solver.run();
+  ASSERT_EQ(r.status, Status::converged) << r.message;
+  solver.set_state(r.vx, r.vy, r.density);
+  Eigen::VectorXd ax, ay, an;
+  std::string issue;
+  ASSERT_TRUE(solver.rate(ax, ay, an, issue)) << issue;
+  const double force = max_abs(solver.averaged_body_force_x());
+  EXPECT_LT(max_abs(ax), 1e-9 * force);
+  EXPECT_LT(max_abs(ay), 1e-9 * force);
+  EXPECT_GT(max_abs(r.vy), 1e-3 * max_abs(r.vx));  // the flow goes round the cylinder
+}
+
+TEST(ForceDensityWalls, CylinderChannelThatLeavesNoGapIsRefused) {
+  try {
+    make_cylinder_channel({{"radius_over_length", 0.2}});
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.path(), "/scene/radius_over_length");
+    EXPECT_NE(e.message().find("two SPH supports to each wall"), std::string::npos) << e.message();
+  }
+}

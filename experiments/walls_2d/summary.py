@@ -3,11 +3,13 @@
 beside the 1D near-wall model's rows of the error budgets on the same scenes and references.
 
 Usage: python3 experiments/walls_2d/summary.py results/walls_2d/reduced/walls_2d_reduced.json > results/walls_2d/reduced/table.md
+       python3 experiments/walls_2d/summary.py results/walls_2d/cylinder_channel/walls_2d_cylinder_channel.json \
+           > results/walls_2d/cylinder_channel/table.md
 
 Every row: the error against the averaged direct SPH over every coarse node (the wall-surface nodes included), the
 paper's peak metric, the fastest reduced run with its spread, the direct run's time and the speed-up; then, for each
 scene, the 1D model's near-wall rows (force-density balance, backward Euler, coarse-fine Tikhonov alpha = 1e-6 with
-C = I and with the viscosity-weighted first difference) from results/error_budget/*/.
+C = I and with the viscosity-weighted first difference) from results/error_budget/*/, for the channels' table.
 """
 import json
 import math
@@ -62,6 +64,8 @@ def main():
             r["label"], pct(e_all), pct(e_peak), t.get("min_seconds", float("nan")),
             100.0 * t.get("spread", float("nan")), c.get("direct_sph_wall_seconds", float("nan")),
             c.get("speed_up", float("nan"))))
+    if not any(r["label"].startswith(tuple(BUDGETS)) for r in rows):
+        return
     print()
     print("The 1D model's near-wall rows on the same scenes and references (results/error_budget):")
     print()

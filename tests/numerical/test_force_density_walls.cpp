@@ -19,6 +19,8 @@
 #include "core/reduced/force_density_2d.hpp"
 #include "core/reduced/meso_solver.hpp"
 #include "core/sph/sph_engine.hpp"
+#include "core/sph/sph_kernel.hpp"
+#include "core/sph/sph_pair_force.hpp"
 
 using namespace closurelab;
 
@@ -246,4 +248,67 @@ TEST(ForceDensityWalls, CylinderChannelThatLeavesNoGapIsRefused) {
     EXPECT_EQ(e.path(), "/scene/radius_over_length");
     EXPECT_NE(e.message().find("two SPH supports to each wall"), std::string::npos) << e.message();
   }
+}
+
+TEST(ForceDensityWalls, CylinderChannelPressureMapIsTheLinearisedPairForce) {
+  // As the cylinder lattice's test (test_force_density_2d.cpp), in the walled box: f_a = −Σ_b (P_a/n_a² + P_b/n_b²)
+  // F q_ab with n = n0 + ε δn by a plain all-pairs loop (x periodic, y bounded), a central difference in ε.
+  Channel c = make_cylinder_channel({{"background_pressure_factor", 0.01}});
+  const Scene& scene = *c.scene;
+  auto dv = tikhonov(1e-6), dn_d = tikhonov(1e-6);
+  ForceDensitySolver2D solver(scene, *c.kernel, *dv, *dn_d, force_density_2d_options_from(resolve_params(
+                                                               json::object(), force_density_2d_schema(), "/solver", {})));
+  const Eigen::Index nr = solver.reconstruction_mesh().size();
+  std::mt19937 gen(13);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd rn(nr);
+  for (Eigen::Index k = 0; k < nr; ++k) rn[k] = u(gen);
+  const Eigen::VectorXd dn = solver.interpolate_to_particles(rn);
+  const ParticleSystem ps = scene.make_particles();
+  const SmoothingKernel w = scene.smoothing_kernel();
+  const std::size_t np = ps.size();
+  const auto dx_of = [&](double d) { return d - scene.box.lx * std::nearbyint(d / scene.box.lx); };
+  // n0: a particle in the middle of the fluid (its stencil full).
+  std::size_t mid = 0;
+  for (std::size_t a = 0; a < np; ++a)
+    if (std::abs(ps.y[a] - 0.3 * scene.box.ly) < 0.5 * scene.dx && std::abs(ps.x[a] - 0.1 * scene.box.lx) < 0.5 * scene.dx) mid = a;
+  double n0 = w.w(0.0);
+  for (std::size_t b = 0; b < np; ++b) {
+    const double r = std::hypot(dx_of(ps.x[mid] - ps.x[b]), ps.y[mid] - ps.y[b]);
+    if (b != mid && r < w.support()) n0 += w.w(r);
+  }
+  const double m = scene.particle_mass();
+  const auto forces = [&](double eps, Eigen::VectorXd& fx, Eigen::VectorXd& fy) {
+    fx = fy = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(np));
+    for (std::size_t a = 0; a < np; ++a) {
+      if (ps.fixed[a]) continue;
+      const double na = n0 + eps * dn[static_cast<Eigen::Index>(a)];
+      for (std::size_t b = 0; b < np; ++b) {
+        const double qx = dx_of(ps.x[a] - ps.x[b]), qy = ps.y[a] - ps.y[b];
+        const double r = std::hypot(qx, qy);
+        if (b == a || r >= w.support()) continue;
+        const double nb = n0 + eps * dn[static_cast<Eigen::Index>(b)];
+        const Vec2 f = sph_pair_force(scene.pressure(na, m) / (na * na), scene.pressure(nb, m) / (nb * nb), 0.0, na, nb,
+                                      w.dw(r) / r, Vec2(qx, qy), Vec2::Zero());
+        fx[static_cast<Eigen::Index>(a)] += f.x() / m;
+        fy[static_cast<Eigen::Index>(a)] += f.y() / m;
+      }
+    }
+  };
+  const double eps = 1e-4 * n0;
+  Eigen::VectorXd fxp, fyp, fxm, fym;
+  forces(eps, fxp, fyp);
+  forces(-eps, fxm, fym);
+  const auto average = [&](const Eigen::VectorXd& q) {
+    ParticleSystem p = ps;
+    for (std::size_t a = 0; a < np; ++a) p.vx[a] = q[static_cast<Eigen::Index>(a)], p.vy[a] = 0.0;
+    return average_particles(p, scene.box, *c.kernel, solver.coarse_mesh(), AveragingRequest{}).vx;
+  };
+  const Eigen::VectorXd ref_x = average((fxp - fxm) / (2.0 * eps)), ref_y = average((fyp - fym) / (2.0 * eps));
+  Eigen::VectorXd mx, my, mn;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nr);
+  solver.rates_from_reconstruction(zero, zero, rn, mx, my, mn);
+  mx -= solver.averaged_body_force_x();
+  EXPECT_LT(max_abs(mx - ref_x), 1e-6 * max_abs(ref_x));
+  EXPECT_LT(max_abs(my - ref_y), 1e-6 * max_abs(ref_y));
 }

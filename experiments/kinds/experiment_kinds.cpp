@@ -17,7 +17,7 @@ const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds() {
     k.push_back(make_sph_validation_experiment());
     k.push_back(make_stability_experiment());
     k.push_back(make_quadrature_convergence_experiment());
-    k.push_back(make_reduced_model_experiment());
+    k.push_back(make_reduced_model_any_geometry_experiment());  // "reduced_model": the three below by "model"
     k.push_back(make_reduced_model_2d_experiment());
     k.push_back(make_reduced_model_force_density_2d_experiment());
     k.push_back(make_snapshot_closure_experiment());

@@ -44,7 +44,7 @@ class ReducedModelAnyGeometry : public ExperimentKind {
   }
   std::vector<KindSection> sections() const override {
     std::vector<KindSection> s = column_->sections();
-    s.insert(s.begin(), KindSection{"model", "which reduced model (column, mesh_2d, force_density_2d; default by the scene)",
+    s.insert(s.begin(), KindSection{"model", "which reduced model (column, mesh_2d, force_density_2d; default by the scene; echoed only when given)",
                                     "", {}});
     return s;
   }

@@ -167,15 +167,18 @@ TEST(CellularScene, BadInputNamesTheParameter) {
 
 TEST(CellularScene, KindsThatNeedAnXInvariantSceneRefuseIt) {
   const json cell = {{"scene", {{"name", "cellular"}, {"n", 16}}}};
-  const auto refused_at = [&](const std::string& kind) {
+  const auto refused_at = [&](const std::string& kind, const json& more = json::object()) {
+    json c = cell;
+    c.update(more);
     try {
-      find_experiment_kind(kind, "/kind").resolve(cell, "", builtin_registry());
+      find_experiment_kind(kind, "/kind").resolve(c, "", builtin_registry());
     } catch (const ConfigError& e) {
       return e.path();
     }
     return std::string("accepted");
   };
-  EXPECT_EQ(refused_at("reduced_model"), "/scene");
+  // reduced_model serves the cellular scene by its 2D model; its 1D column refuses it.
+  EXPECT_EQ(refused_at("reduced_model", {{"model", "column"}}), "/scene");
   EXPECT_EQ(refused_at("quadrature_convergence"), "/scene");
   EXPECT_EQ(refused_at("direct_sph_validation"), "accepted");
 }

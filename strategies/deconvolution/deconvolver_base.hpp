@@ -265,8 +265,8 @@ class DeconvolverBase : public Deconvolver {
     s.data_mesh = a.data_mesh;
     s.solution_mesh = a.solution_mesh;
     s.dimension = a.dimension;
-    s.difference_links = a.difference_links;  // as the link weights: relative, unchanged by the data's scale
-    s.link_weights = a.link_weights;  // the prior of first_difference_zero_ends (scale-free: relative weights)
+    s.link_weights = a.link_weights;  // the priors of first_difference_zero_ends (scale-free: relative weights)
+    s.difference_links = a.difference_links;
     return s;
   }
   // A fixed-parameter result of op() x' = 2^-m b back to A x = b: x = 2^(m-k) x', residual 2^m.

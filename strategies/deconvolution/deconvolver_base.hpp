@@ -262,9 +262,7 @@ class DeconvolverBase : public Deconvolver {
         break;
       }
     }
-    s.data_mesh = a.data_mesh;
-    s.solution_mesh = a.solution_mesh;
-    s.dimension = a.dimension;
+    s.data_mesh = a.data_mesh, s.solution_mesh = a.solution_mesh, s.dimension = a.dimension;
     s.link_weights = a.link_weights;  // the priors of first_difference_zero_ends (scale-free: relative weights)
     s.difference_links = a.difference_links;
     return s;

@@ -2,6 +2,8 @@
 // the probed and bordered linear system, and what a run reports (core/reduced/force_density_2d.hpp); the maps are
 // assembled in force_density_2d.cpp.
 #include <Eigen/LU>
+#include <Eigen/QR>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -94,16 +96,31 @@ namespace {
 
 // big z = rhs by LU, equilibrated (rows, then columns, to unit largest entry): the momentum and density rows differ in
 // units, and free nodes with a small fluid fraction have small rows; the condition estimate is then of the problem
-// itself. False (the reason in `issue`) when the system is singular to working precision.
-bool equilibrated_solve(Eigen::MatrixXd big, const Eigen::VectorXd& rhs, Eigen::VectorXd& z, std::string& issue) {
+// itself. False (the reason in `issue`) when the system is singular to working precision. With `minimum_norm`, a
+// rank-deficient system is solved by a complete orthogonal decomposition (the minimum-norm solution of the equilibrated
+// system), which must then satisfy it to 1e-9 of the right-hand side.
+bool equilibrated_solve(Eigen::MatrixXd big, const Eigen::VectorXd& rhs, Eigen::VectorXd& z, std::string& issue,
+                        bool minimum_norm = false) {
   const Eigen::VectorXd row_scale = big.rowwise().lpNorm<Eigen::Infinity>().cwiseMax(1e-300).cwiseInverse();
   big = row_scale.asDiagonal() * big;
   const Eigen::VectorXd col_scale = big.colwise().lpNorm<Eigen::Infinity>().transpose().cwiseMax(1e-300).cwiseInverse();
   big = big * col_scale.asDiagonal();
+  const Eigen::VectorXd b = row_scale.cwiseProduct(rhs);
+  std::ostringstream os;
+  if (minimum_norm) {
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(big);
+    const Eigen::VectorXd zs = cod.solve(b);
+    const double residual = (big * zs - b).norm() / std::max(b.norm(), 1e-300);
+    z = col_scale.cwiseProduct(zs);
+    if (z.allFinite() && residual < 1e-9) return true;
+    os << "the steady system has no solution to working precision (relative residual " << residual << ", rank "
+       << cod.rank() << " of " << big.rows() << ")";
+    issue = os.str();
+    return false;
+  }
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(big);
-  z = col_scale.cwiseProduct(lu.solve(row_scale.cwiseProduct(rhs)));
+  z = col_scale.cwiseProduct(lu.solve(b));
   if (!z.allFinite() || lu.rcond() < 1e-15) {
-    std::ostringstream os;
     os << "the steady system is singular to working precision (reciprocal condition " << lu.rcond() << ")";
     issue = os.str();
     return false;
@@ -145,22 +162,32 @@ bool ForceDensitySolver2D::steady_solve(std::string& issue) {
   if (!deconvolve_columns(density_, unit, xn, issue) || !deconvolve(density_, zero, x0n, issue)) return false;
   const Eigen::MatrixXd mxn = free_rows_of(pressure_x_ * xn), myn = free_rows_of(pressure_y_ * xn),
                         mnx = free_rows_of(continuity_x_ * xv), mny = free_rows_of(continuity_y_ * xv);
-  Eigen::MatrixXd big = Eigen::MatrixXd::Zero(3 * f + 1, 3 * f + 1);
+  // Without a solid (the cellular flow) a uniform velocity exerts no force either (Galilean invariance): the cell's
+  // momentum in x and in y borders the system too, zero as from rest (a periodic force of zero mean keeps it there).
+  // And the coarse mesh's odd density modes ((−1)^i, (−1)^j, (−1)^(i+j)) are even about every node, so their averaged
+  // pressure force vanishes there by symmetry (the collocated-grid pressure modes; a solid breaks the symmetry): the
+  // system stays singular in n̄ along them, which moves no velocity, and its minimum-norm solution is taken.
+  const bool has_solid = std::find(fixed_.begin(), fixed_.end(), std::uint8_t{1}) != fixed_.end();
+  const Eigen::Index borders = has_solid ? 1 : 3, size = 3 * f + borders;
+  Eigen::MatrixXd big = Eigen::MatrixXd::Zero(size, size);
   big.block(0, 0, f, f) = mvv;
   big.block(0, 2 * f, f, f) = mxn;
   big.block(f, f, f, f) = mvv;
   big.block(f, 2 * f, f, f) = myn;
   big.block(2 * f, 0, f, f) = mnx;
   big.block(2 * f, f, f, f) = mny;
-  Eigen::VectorXd weight = on_free(mass_weight_);
-  big.block(2 * f, 3 * f, f, 1).setConstant(1.0);  // the multiplier of the free direction
-  big.block(3 * f, 2 * f, 1, f) = weight.transpose();
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(3 * f + 1);
+  const Eigen::VectorXd weight = on_free(mass_weight_);
+  for (Eigen::Index k = 0; k < borders; ++k) {  // k = 0: the density deviation; 1, 2: the momentum in x, y
+    const Eigen::Index block = k == 0 ? 2 * f : (k - 1) * f;
+    big.block(block, 3 * f + k, f, 1).setConstant(1.0);  // the multiplier of the free direction
+    big.block(3 * f + k, block, 1, f) = weight.transpose();
+  }
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size);
   rhs.segment(0, f) = -on_free(viscous_ * x0v + pressure_x_ * x0n + body_x_);
   rhs.segment(f, f) = -on_free(viscous_ * x0v + pressure_y_ * x0n + body_y_);
   rhs.segment(2 * f, f) = -on_free(continuity_x_ * x0v + continuity_y_ * x0v);
   probe_seconds_ = seconds_since(t0);
-  if (!equilibrated_solve(std::move(big), rhs, z, issue)) return false;
+  if (!equilibrated_solve(std::move(big), rhs, z, issue, !has_solid)) return false;
   vx_ = z.segment(0, f);
   vy_ = z.segment(f, f);
   n_ = z.segment(2 * f, f);

@@ -75,10 +75,12 @@ const CommandSpec& run_command_spec() {
         "sets the dotted KEY (e.g. solver.kappa=0.1) in every cell, over the base, the axes and\n"
         "the cells; VALUE is read as JSON, else as a string; repeatable; validated like the spec",
         true, false, ValueForm::key_value},
-       {"--dry-run", "", "validates and prints every resolved cell (defaults filled in); runs and writes nothing"}},
+       {"--dry-run", "", "validates and prints every resolved cell (defaults filled in); runs and writes nothing"},
+       {"--strict", "", "exit 3 when a row's status is not ok (numerical_issue, no_convergence), after writing it"}},
       "  Under mpirun (built with MPI) the K ranks share the cells, one at a time each, costliest first; rank 0\n"
       "  validates, hands out and writes (--jobs > 1 with several ranks is refused).\n"
-      "  Exit codes: 0 all cells ran, 1 a cell failed or a write failed, 2 bad input or the folder is in use.",
+      "  Exit codes: 0 all cells ran, 1 a cell failed or a write failed, 2 bad input or the folder is in use,\n"
+      "  3 with --strict a row is not ok.",
       {"mpirun -n K closurelab run SPEC.json [--out DIR] [--force] [--store DIR] [--shard i/N] [--set KEY=VALUE ...]"}};
   return spec;
 }
@@ -94,6 +96,7 @@ int run_command(int argc, char** argv, const Registry& registry) {
   opt.out_dir = args.value("--out");
   if (args.has("--jobs")) opt.jobs = std::stoi(args.value("--jobs"));
   opt.force = args.has("--force");
+  opt.strict = args.has("--strict");
   if (args.has("--shard")) opt.shard = parse_shard(args.value("--shard"));
   const bool dry_run = args.has("--dry-run"), store_given = args.has("--store");
   const std::string store_dir = args.value("--store", default_reference_store_dir());

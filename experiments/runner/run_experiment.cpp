@@ -170,10 +170,15 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
               << " cell(s) computed in this run are kept in " << (fs::path(options.out_dir) / "cells").string() << "\n";
     return 1;
   }
-  std::size_t failed = 0;
-  for (std::size_t i : mine) failed += rows[i].value("status", "") == "error";
+  std::size_t failed = 0, not_ok = 0;
+  for (std::size_t i : mine) {
+    const std::string status = rows[i].value("status", "");
+    failed += status == "error";
+    not_ok += status != "error" && status != "ok";
+  }
   const std::string counts = std::to_string(mine.size()) + " cells: " + std::to_string(computed) + " computed, " +
-                             std::to_string(cached) + " cached, " + std::to_string(failed) + " failed";
+                             std::to_string(cached) + " cached, " + std::to_string(failed) + " failed" +
+                             (not_ok > 0 ? ", " + std::to_string(not_ok) + " not ok (numerical_issue or no_convergence)" : "");
   try {
     if (shard.active()) {
       write_shard_note(options.out_dir, shard, spec, options.spec_file, mine_ids, true);
@@ -190,7 +195,12 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
               << " was not written; the cells are kept in " << (fs::path(options.out_dir) / "cells").string() << "\n";
     return 1;
   }
-  return failed == 0 ? 0 : 1;
+  if (failed > 0) return 1;
+  if (options.strict && not_ok > 0) {
+    std::cerr << tag << "--strict: " << not_ok << " row(s) not ok; exit 3\n";
+    return 3;
+  }
+  return 0;
 }
 
 }  // namespace

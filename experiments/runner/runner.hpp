@@ -58,12 +58,15 @@ struct RunOptions {
   std::string command_line;
   std::string spec_file;
   Shard shard;  // --shard i/N; not sharded by default
+  // --strict: a row whose status is not "ok" (numerical_issue, no_convergence: recorded, not trustworthy) makes the
+  // exit code 3 once everything is written.
+  bool strict = false;
   // Called on rank 0 only, when its run is over (e.g. the store summary: under mpirun once, not once per rank).
   std::function<void()> after_run_on_rank0;
 };
 
 // Runs the whole matrix (or one shard); returns the process exit code (0: all cells ok or recorded, 1: a cell
-// failed or a write failed, 2: invalid spec or options, or the folder is in use). Under mpirun every rank calls
+// failed or a write failed, 2: invalid spec or options, or the folder is in use, 3: with `strict`, a row not ok). Under mpirun every rank calls
 // it: rank 0 validates, hands out the cells and writes; the other ranks compute what they are handed.
 int run_experiment(const json& spec, const Registry& registry, const RunOptions& options);
 

@@ -65,3 +65,22 @@ TEST(ReferenceStoreLocation, WithoutHomeOrCLOSURELAB_STOREARunSaysWhereTheStoreI
   EXPECT_NE(o.err.find("neither CLOSURELAB_STORE nor HOME is set"), std::string::npos) << o.err;
   EXPECT_NE(o.err.find(".closurelab-store"), std::string::npos) << o.err;
 }
+
+TEST(ReducedRowStatus, StrictExitsThreeWhenARowIsNotOk) {
+  // The table is written either way; --strict makes the untrustworthy row visible to a script (exit 3), and a
+  // healthy spec still exits 0 with it.
+  json base = channel();
+  base["closure"] = {{"deconvolver", {{"name", "tikhonov"}, {"alpha", 1e300}}}};
+  for (const bool healthy : {false, true}) {
+    if (healthy) base["closure"] = {{"deconvolver", {{"name", "landweber"}, {"order", 0}}}};
+    const auto work = fresh_work_folder(healthy ? "strict_ok" : "strict_not_ok");
+    write_text(work / "spec.json", json{{"name", "spec"}, {"kind", "reduced_model"}, {"base", base}}.dump(2));
+    const CliOutcome o = run_shell(work, "OMP_NUM_THREADS=1 CLOSURELAB_STORE=" + (work / "store").string() + " " +
+                                             std::string(CLOSURELAB_BINARY_DIR) + "/experiments/closurelab run " +
+                                             (work / "spec.json").string() + " --out " + (work / "out").string() +
+                                             " --strict");
+    EXPECT_EQ(o.code, healthy ? 0 : 3) << o.err;
+    EXPECT_TRUE(std::filesystem::exists(work / "out" / "spec.json"));
+    if (!healthy) EXPECT_NE(o.err.find("1 not ok"), std::string::npos) << o.err;
+  }
+}

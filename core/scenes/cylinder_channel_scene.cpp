@@ -4,6 +4,7 @@
 // at zero velocity, the others are fluid driven by the body force g along x (a row of obstacles in a channel, Stokes
 // flow at small g). No analytic solution: the direct SPH of the same box is the reference.
 #include "core/scenes/cylinder_channel_scene.hpp"
+#include "core/scenes/cylinder_lattice_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -79,8 +80,7 @@ std::unique_ptr<Scene> make_cylinder_channel(const json& p) {
   s->body_force = [g](double, double) { return Vec2(g, 0.0); };
   // Scales (sound speed, progress, divergence guards): the peak of the channel without the cylinder, g w² / (8 ν).
   const double w = s->wall_hi - s->wall_lo, u = g * w * w / (8.0 * nu);
-  const double v2 = std::max({u * u, nu * u / l, g * l, nu * nu / (l * l)});
-  s->sound_speed = p.at("sound_speed_factor").get<double>() * std::sqrt(v2);
+  s->sound_speed = solid_scene_sound_speed(p.at("sound_speed_factor").get<double>(), u, nu, g, l);
   s->background_pressure = p.at("background_pressure_factor").get<double>() * s->rho0 * s->sound_speed * s->sound_speed;
   s->analytic_peak = u;
   s->x_invariant = false;

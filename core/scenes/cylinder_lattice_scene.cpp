@@ -130,8 +130,7 @@ std::unique_ptr<Scene> make_cylinder_lattice(const json& p) {
   // limit rho eps'^2 / mu stays the smaller one for n > 10, so this costs nothing.
   const double u_mean = perm.superficial_velocity(rho, mu);
   const double u_gap = 1.5 * u_mean * l / gap;
-  const double v2 = std::max({u_gap * u_gap, nu * u_gap / l, g * l, nu * nu / (l * l)});
-  s->sound_speed = p.at("sound_speed_factor").get<double>() * std::sqrt(v2);
+  s->sound_speed = solid_scene_sound_speed(p.at("sound_speed_factor").get<double>(), u_gap, nu, g, l);
   s->background_pressure = p.at("background_pressure_factor").get<double>() * s->rho0 * s->sound_speed * s->sound_speed;
   s->analytic_peak = u_gap;  // no analytic field: the gap-velocity estimate sets the scales (sound speed, progress)
   s->x_invariant = false;
@@ -140,6 +139,10 @@ std::unique_ptr<Scene> make_cylinder_lattice(const json& p) {
 }
 
 }  // namespace
+
+double solid_scene_sound_speed(double factor, double u, double nu, double g, double l) {
+  return factor * std::sqrt(std::max({u * u, nu * u / l, g * l, nu * nu / (l * l)}));
+}
 
 void register_cylinder_lattice_scene(Registry& r) {
   r.scenes.add({"cylinder-lattice",

@@ -8,6 +8,11 @@ namespace closurelab {
 
 struct Registry;
 
-void register_cylinder_lattice_scene(Registry& r);  // called from register_scenes (core/scenes/scenes.cpp)
+void register_cylinder_lattice_scene(Registry& r);
+
+// The sound speed of a Stokes scene with solids (Morris, Fox & Zhu 1997, and ν/L for an underdamped cell; the
+// reasoning at its use in cylinder_lattice_scene.cpp): factor · V, V² = max(U², νU/L, gL, ν²/L²), U the scene's
+// velocity scale. cylinder-channel uses it too.
+double solid_scene_sound_speed(double factor, double u, double nu, double g, double l);  // called from register_scenes (core/scenes/scenes.cpp)
 
 }  // namespace closurelab

@@ -21,8 +21,10 @@
 #include "core/sph/sph_engine.hpp"
 #include "core/sph/sph_kernel.hpp"
 #include "core/sph/sph_pair_force.hpp"
+#include "tests/support/linearised_pressure.hpp"
 
 using namespace closurelab;
+using closurelab::testing::linearised_pressure_force;
 
 namespace {
 
@@ -265,46 +267,19 @@ TEST(ForceDensityWalls, CylinderChannelPressureMapIsTheLinearisedPairForce) {
   for (Eigen::Index k = 0; k < nr; ++k) rn[k] = u(gen);
   const Eigen::VectorXd dn = solver.interpolate_to_particles(rn);
   const ParticleSystem ps = scene.make_particles();
-  const SmoothingKernel w = scene.smoothing_kernel();
-  const std::size_t np = ps.size();
-  const auto dx_of = [&](double d) { return d - scene.box.lx * std::nearbyint(d / scene.box.lx); };
   // n0: a particle in the middle of the fluid (its stencil full).
   std::size_t mid = 0;
-  for (std::size_t a = 0; a < np; ++a)
+  for (std::size_t a = 0; a < ps.size(); ++a)
     if (std::abs(ps.y[a] - 0.3 * scene.box.ly) < 0.5 * scene.dx && std::abs(ps.x[a] - 0.1 * scene.box.lx) < 0.5 * scene.dx) mid = a;
-  double n0 = w.w(0.0);
-  for (std::size_t b = 0; b < np; ++b) {
-    const double r = std::hypot(dx_of(ps.x[mid] - ps.x[b]), ps.y[mid] - ps.y[b]);
-    if (b != mid && r < w.support()) n0 += w.w(r);
-  }
-  const double m = scene.particle_mass();
-  const auto forces = [&](double eps, Eigen::VectorXd& fx, Eigen::VectorXd& fy) {
-    fx = fy = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(np));
-    for (std::size_t a = 0; a < np; ++a) {
-      if (ps.fixed[a]) continue;
-      const double na = n0 + eps * dn[static_cast<Eigen::Index>(a)];
-      for (std::size_t b = 0; b < np; ++b) {
-        const double qx = dx_of(ps.x[a] - ps.x[b]), qy = ps.y[a] - ps.y[b];
-        const double r = std::hypot(qx, qy);
-        if (b == a || r >= w.support()) continue;
-        const double nb = n0 + eps * dn[static_cast<Eigen::Index>(b)];
-        const Vec2 f = sph_pair_force(scene.pressure(na, m) / (na * na), scene.pressure(nb, m) / (nb * nb), 0.0, na, nb,
-                                      w.dw(r) / r, Vec2(qx, qy), Vec2::Zero());
-        fx[static_cast<Eigen::Index>(a)] += f.x() / m;
-        fy[static_cast<Eigen::Index>(a)] += f.y() / m;
-      }
-    }
-  };
-  const double eps = 1e-4 * n0;
-  Eigen::VectorXd fxp, fyp, fxm, fym;
-  forces(eps, fxp, fyp);
-  forces(-eps, fxm, fym);
+  Eigen::VectorXd dfx, dfy;
+  linearised_pressure_force(scene, ps, dn, mid, dfx, dfy);
+  const std::size_t np = ps.size();
   const auto average = [&](const Eigen::VectorXd& q) {
     ParticleSystem p = ps;
     for (std::size_t a = 0; a < np; ++a) p.vx[a] = q[static_cast<Eigen::Index>(a)], p.vy[a] = 0.0;
     return average_particles(p, scene.box, *c.kernel, solver.coarse_mesh(), AveragingRequest{}).vx;
   };
-  const Eigen::VectorXd ref_x = average((fxp - fxm) / (2.0 * eps)), ref_y = average((fyp - fym) / (2.0 * eps));
+  const Eigen::VectorXd ref_x = average(dfx), ref_y = average(dfy);
   Eigen::VectorXd mx, my, mn;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nr);
   solver.rates_from_reconstruction(zero, zero, rn, mx, my, mn);

@@ -1,9 +1,10 @@
-// The command-line program of closurelab (list, run, merge, deconvolve, store, export), as a function that a
+// The command-line program of closurelab (list, run, merge, seal, deconvolve, store, export), as a function that a
 // user's executable calls with its own registration hook (experiments/runner/closurelab_main.hpp); the stock
 // `closurelab` calls it with none (main.cpp). The commands with many options have files of their own:
 //   closurelab list [family]
 //   closurelab run SPEC.json [...]                  (run_command.cpp; also under mpirun -n K)
 //   closurelab merge DIR
+//   closurelab seal DIR [--dry-run]                 (seal_command.cpp)
 //   closurelab store [--store DIR]
 //   closurelab deconvolve --matrix A.mtx --rhs b.mtx [...]   (deconvolve_command.cpp)
 //   closurelab export TABLE.json --csv               (export_command.cpp)
@@ -24,6 +25,7 @@
 #include "experiments/runner/deconvolve_command.hpp"
 #include "experiments/runner/export_command.hpp"
 #include "experiments/runner/run_command.hpp"
+#include "experiments/runner/seal_command.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/kinds/reference_store.hpp"
 #include "experiments/runner/runner.hpp"
@@ -48,7 +50,8 @@ const CommandSpec& merge_spec() {
   static const CommandSpec spec{
       "merge", {{"DIR"}},
       "  Writes the table DIR/<name>.json of a run made with --out DIR --shard i/N (every i), as a single run would\n"
-      "  have written it. Every cell must be in DIR/cells; the missing ones are listed with the shards to run.",
+      "  have written it. Every cell must be in DIR/cells, intact and sealed (cell_fnv1a64); the missing, damaged or\n"
+      "  unsealed ones are listed with the shards to run (trusted cells of an older closurelab: closurelab seal DIR).",
       {},
       "  Exit codes: 0 written, 1 a cell had failed or a write failed, 2 missing cells, bad input or the folder in use."};
   return spec;
@@ -67,7 +70,8 @@ const CommandSpec& store_spec() {
 void top_usage(std::ostream& os, const Registry& registry) {
   os << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n"
      << "usage:\n";
-  for (const CommandSpec* c : {&list_spec(), &run_command_spec(), &merge_spec(), &store_spec(), &export_command_spec()}) {
+  for (const CommandSpec* c : {&list_spec(), &run_command_spec(), &merge_spec(), &seal_command_spec(), &store_spec(),
+                               &export_command_spec()}) {
     std::istringstream lines(synopsis(*c));
     for (std::string l; std::getline(lines, l);) os << "  " << l << "\n";
   }
@@ -189,6 +193,7 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
     if (cmd == "list") return stdout_checked(list_command(argc, argv, registry));
     if (cmd == "run") return run_command(argc, argv, registry);
     if (cmd == "merge") return merge_command(argc, argv, registry);
+    if (cmd == "seal") return run_seal_command(argc, argv);
     if (cmd == "deconvolve") return run_deconvolve_command(argc, argv, registry);
     if (cmd == "store") return stdout_checked(store_command(argc, argv));
     if (cmd == "export") return run_export_command(argc, argv);
@@ -200,8 +205,8 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
       std::cout << "closurelab " << build_info::version << " (" << build_info::git_commit << ")\n";
       return stdout_checked(0);
     }
-    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, merge, deconvolve, store, export, --help, "
-                 "--version\n";
+    std::cerr << "error: unknown command '" << cmd << "'; known: list, run, merge, seal, deconvolve, store, export, "
+                 "--help, --version\n";
     top_usage(std::cerr, registry);
     return 2;
   } catch (const UsageError& e) {  // a bad invocation: the message, then the command's synopsis

@@ -16,7 +16,8 @@ std::filesystem::path cell_file(const std::string& out_dir, const std::string& i
 
 // A cell file holds the row and `cell_fnv1a64`: 16 hex digits of the FNV-1a (reference_store.hpp) of the row's
 // canonical dump without that key, so a file edited by hand or damaged is never reused or merged as if computed.
-// Files written before the checksum (committed results) have none: they are `legacy`, used as they are.
+// A file without the key (written before cells carried it, or edited with the key deleted) is `unsealed` and
+// treated as an edited one; `closurelab seal DIR` (seal_cell_file) adds the key to a folder of trusted old cells.
 inline constexpr const char* cell_checksum_key = "cell_fnv1a64";
 
 struct StoredCell {
@@ -24,12 +25,12 @@ struct StoredCell {
     absent,        // no file
     unreadable,    // truncated or not a JSON object (`problem` says why)
     edited,        // its checksum does not match its contents
+    unsealed,      // no checksum (an older closurelab, or a hand edit that deleted it): not used
     other_params,  // intact, but computed with other resolved parameters (an older default)
-    legacy,        // no checksum (an older closurelab); the row is used as it is
     verified       // checksum matches
   };
   State state = State::absent;
-  std::optional<json> row;  // for legacy and verified: the row, without the checksum
+  std::optional<json> row;  // verified only: the row, without the checksum
   std::string problem;
   bool usable() const { return row.has_value(); }
 };
@@ -42,6 +43,26 @@ std::string cell_checksum(const json& row);
 
 // Writes a finished cell's row atomically, with its checksum.
 void write_row(const std::filesystem::path& file, const json& row);
+
+// What to do with unsealed cell files that are trusted (the line a run and `merge` print after naming them).
+std::string unsealed_cells_hint(const std::string& out_dir);
+
+// Sealing one cell file (`closurelab seal DIR`, seal_command.hpp): a file without `cell_fnv1a64` gets it, written
+// as write_row writes a row; the row itself is unchanged (checked: the sealed file reads back as the same row).
+struct SealOutcome {
+  enum class Result {
+    sealed,          // the key added (or, with write = false, it would be)
+    already_sealed,  // it has the key and the key matches
+    refused          // left as it is: `problem` says why (unreadable, not a cell's row, a checksum that does not
+                     // match, a row that would not read back unchanged)
+  };
+  Result result = Result::refused;
+  // sealed: the file's bytes were not closurelab's own dump of its row (other indentation, key order or number
+  // spelling), so more than the one key's line changes; the row still reads back the same.
+  bool formatting_changed = false;
+  std::string problem;
+};
+SealOutcome seal_cell_file(const std::filesystem::path& file, bool write);
 
 // The table of `rows` (in the matrix's order): the spec, the table's provenance derived from the rows
 // (provenance.hpp), `complete`, the rows. Nothing of "now" enters it.

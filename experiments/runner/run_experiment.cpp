@@ -69,21 +69,23 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
   std::vector<std::string> mine_ids;
   std::vector<json> rows(cells.size());
   std::vector<bool> done(cells.size(), false);
-  std::size_t computed = 0, finished = 0, cached = 0, legacy = 0;
+  std::size_t computed = 0, finished = 0, cached = 0, unsealed = 0;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (shard_of[i] != shard.index) continue;
     mine.push_back(i);
     mine_ids.push_back(cells[i].id);
     const fs::path file = cell_file(options.out_dir, cells[i].id);
     StoredCell stored = options.force ? StoredCell{} : read_cell(file, matrix->resolved[i]);
-    // A damaged or edited file is never taken as this cell's result, and never replaced without a word.
-    if (stored.state == StoredCell::State::unreadable || stored.state == StoredCell::State::edited)
+    // A damaged, edited or unsealed file is never taken as this cell's result, and never replaced without a word.
+    using State = StoredCell::State;
+    if (stored.state == State::unreadable || stored.state == State::edited || stored.state == State::unsealed) {
+      unsealed += stored.state == State::unsealed;
       std::cerr << tag << "cell " << (i + 1) << "/" << cells.size() << " (" << cells[i].label << "): "
-                << (stored.state == StoredCell::State::unreadable ? "truncated or unreadable: " : "")
-                << file.string() << (stored.state == StoredCell::State::edited ? " " + stored.problem : "")
+                << (stored.state == State::unreadable ? "truncated or unreadable: " + file.string()
+                                                      : file.string() + " " + stored.problem)
                 << "; recomputing it\n";
+    }
     if (stored.usable() && stored.row->value("status", "") != "error") {
-      legacy += stored.state == StoredCell::State::legacy;
       rows[i] = std::move(*stored.row);
       done[i] = true;
       ++cached;
@@ -94,9 +96,9 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
       to_compute.push_back(i);
     }
   }
-  if (legacy > 0)
-    std::cerr << tag << "note: " << legacy << " finished cell file(s) carry no checksum (written by an older "
-              << "closurelab); reused as they are\n";
+  if (unsealed > 0)
+    std::cerr << tag << "note: " << unsealed << " cell file(s) without a checksum are recomputed: "
+              << unsealed_cells_hint(options.out_dir) << "\n";
   const fs::path table_file = fs::path(options.out_dir) / (name + ".json");
   auto finished_rows = [&]() {
     std::vector<json> v;

@@ -93,12 +93,11 @@ int merge_shards(const std::string& dir, const Registry& registry, const std::st
   std::vector<json> rows;
   std::vector<std::string> missing;
   std::vector<bool> shard_missing(static_cast<std::size_t>(count), false);
-  std::size_t legacy = 0;
+  std::size_t unsealed = 0;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const fs::path file = cell_file(dir, cells[i].id);
     StoredCell stored = read_cell(file, matrix->resolved[i]);
     if (stored.usable()) {
-      legacy += stored.state == StoredCell::State::legacy;
       rows.push_back(std::move(*stored.row));
       continue;
     }
@@ -112,17 +111,18 @@ int merge_shards(const std::string& dir, const Registry& registry, const std::st
       case StoredCell::State::unreadable:
         missing.push_back("truncated or unreadable: " + file.string() + " (" + cell + ")");
         break;
-      default: missing.push_back(stored.problem + ": " + file.string() + " (" + cell + ")");  // edited, other_params
+      default:  // edited, unsealed, other_params
+        unsealed += stored.state == StoredCell::State::unsealed;
+        missing.push_back(stored.problem + ": " + file.string() + " (" + cell + ")");
     }
     shard_missing[static_cast<std::size_t>(s)] = true;
   }
-  if (legacy > 0)
-    std::cerr << "note: " << legacy << " cell file(s) carry no checksum (written by an older closurelab); merged as "
-              << "they are\n";
   if (!missing.empty()) {
     for (const auto& m : missing) std::cerr << "error: " << m << "\n";
+    if (unsealed > 0) std::cerr << "error: " << unsealed_cells_hint(dir) << "\n";
     std::cerr << "error: " << missing.size() << " of " << cells.size()
-              << " cell(s) missing or unusable; nothing was written. Run:\n";
+              << " cell(s) missing or unusable; nothing was written. Run" << (unsealed > 0 ? " (or seal)" : "")
+              << ":\n";
     for (int s = 0; s < count; ++s)
       if (shard_missing[static_cast<std::size_t>(s)])
         std::cerr << "  closurelab run " << spec_file << " --out " << dir << " --shard " << s << "/" << count << "   ("

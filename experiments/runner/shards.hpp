@@ -34,8 +34,8 @@ void write_shard_note(const std::string& dir, const Shard& shard, const json& sp
                       const std::vector<std::string>& cell_ids, bool complete);
 
 // `closurelab merge DIR`: returns the exit code (0 table written, 1 a cell had failed or a write failed,
-// 2 no shard notes, notes that disagree, an invalid spec, missing, truncated or edited cells (each listed, with the
-// shards to run; results_table.hpp read_cell) or the folder in use).
+// 2 no shard notes, notes that disagree, an invalid spec, missing, truncated, edited or unsealed cells (each
+// listed, with the shards to run; results_table.hpp read_cell) or the folder in use).
 int merge_shards(const std::string& dir, const Registry& registry, const std::string& command_line);
 
 }  // namespace closurelab

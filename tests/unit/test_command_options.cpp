@@ -11,6 +11,7 @@
 #include "experiments/runner/deconvolve_command.hpp"
 #include "experiments/runner/export_command.hpp"
 #include "experiments/runner/run_command.hpp"
+#include "experiments/runner/seal_command.hpp"
 
 using namespace closurelab;
 
@@ -45,7 +46,7 @@ std::vector<CommandSpec> every_command() {
     register_builtin_strategies(r);
     return r;
   }();
-  return {run_command_spec(), deconvolve_command_spec(registry), export_command_spec()};
+  return {run_command_spec(), deconvolve_command_spec(registry), export_command_spec(), seal_command_spec()};
 }
 
 }  // namespace

@@ -3,7 +3,10 @@
 `closurelab merge` (so every committed cell file is intact and sealed, and its row is the table's row): for each
 table RESULTS/**/<name>.json (a runner table: it has "spec", "spec_file" and "rows"), a copy of its cells/ folder in
 a temporary folder, a one-shard note 0-of-1 naming the table's spec, `closurelab merge`, and the merged table's bytes
-against the committed one. Prints one line per table; exit 1 if any differs or merge refuses.
+against the committed one. Also, without the binary's judgement, that every row of the table is its cell file's
+row (the same JSON once cell_fnv1a64 is set aside) and that every cell file is sealed: so a table whose cells merge
+refuses as "computed with other parameters" (cells older than a default added since, which a run would recompute)
+is still checked to be its cells. Prints one line per table; exit 1 if any check fails.
 
 usage: scripts/check_tables_merge.py CLOSURELAB [RESULTS_DIR]   (RESULTS_DIR default: results)
 """
@@ -28,8 +31,25 @@ def tables(results_dir):
             yield path, t
 
 
+def rows_are_cells(folder, table):
+    for r in table["rows"]:
+        try:
+            cell = json.load(open(os.path.join(folder, "cells", r["id"] + ".json")))
+        except (OSError, ValueError) as e:
+            return f"cell {r['id']}: {e}"
+        if "cell_fnv1a64" not in cell:
+            return f"cell {r['id']}: not sealed"
+        cell.pop("cell_fnv1a64")
+        if cell != r:
+            return f"cell {r['id']}: its row differs from the table's"
+    return ""
+
+
 def check(closurelab, path, table):
     folder = os.path.dirname(path)
+    problem = rows_are_cells(folder, table)
+    if problem:
+        return False, "rows: " + problem
     name = table["spec"]["name"]
     with tempfile.TemporaryDirectory(prefix="check_tables_merge_") as tmp:
         shutil.copytree(os.path.join(folder, "cells"), os.path.join(tmp, "cells"))
@@ -42,9 +62,10 @@ def check(closurelab, path, table):
         merged = os.path.join(tmp, name + ".json")
         if not os.path.exists(merged):
             errors = [l for l in r.stderr.splitlines() if l.startswith("error:")] or [r.stderr.strip()]
-            return False, f"merge wrote no table (exit {r.returncode}; {len(errors)} error line(s)): {errors[0]}"
+            return False, (f"rows are the sealed cells; merge wrote no table (exit {r.returncode}; {len(errors)} "
+                           f"error line(s)): {errors[0]}")
         same = open(merged, "rb").read() == open(path, "rb").read()
-        return same, f"exit {r.returncode}, " + ("byte-identical" if same else "DIFFERS")
+        return same, f"rows are the sealed cells; merge exit {r.returncode}, " + ("byte-identical" if same else "DIFFERS")
 
 
 def main(closurelab, results_dir="results"):

@@ -69,7 +69,8 @@ class PermeabilityWatch(lc.LatticeCylinders):
 
     def permeability(self):
         fluid = [pa for pa in self.particles if pa.name == "fluid"][0]
-        mean_u = float((fluid.m * fluid.u).sum()) / (lc.rho0 * lc.L * lc.H)
+        local = fluid.tag == 0  # the arrays also hold the periodic images (tag 2)
+        mean_u = float((fluid.m * fluid.u)[local].sum()) / (lc.rho0 * lc.L * lc.H)
         return lc.nu * mean_u / lc.fx
 
     def post_step(self, solver):
@@ -126,14 +127,14 @@ def main():
     window = [kk / lc.L ** 2 for tt, kk in app.history if tt > t_end - app.window]
     k_l2 = sum(window) / len(window)  # the mean over the last window
     fluid = [pa for pa in app.particles if pa.name == "fluid"][0]
-    u_max = float(max(math.hypot(u, v) for u, v in zip(fluid.u, fluid.v)))
+    u_max = float(max(math.hypot(u, v) for u, v, tag in zip(fluid.u, fluid.v, fluid.tag) if tag == 0))
     result = {
         "script": "scripts/peer_lattice_cylinders.py",
         "pysph": getattr(pysph, "__version__", "?"),
         "host": platform.node(),
         "argv": sys.argv[1:],
         "nx": a.nx, "dx": lc.dx, "dt": lc.dt, "fx": lc.fx, "nu": lc.nu, "c0": lc.c0, "rho0": lc.rho0,
-        "particles": {pa.name: pa.get_number_of_particles() for pa in app.particles},
+        "particles": {pa.name: int((pa.tag == 0).sum()) for pa in app.particles},  # local, no periodic images
         "tau": tau, "window": a.window_over_tau * tau, "tol": a.tol,
         "steps": int(app.solver.count), "t_end": t_end, "steady": app.steady_at is not None,
         "k_over_L2": k_l2, "k_vs_reference": k_l2 / K_REF_OVER_L2 - 1.0,

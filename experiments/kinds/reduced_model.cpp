@@ -43,13 +43,6 @@ ParamSchema transient_schema() {
                       "channel width, or L_y without walls); the steady state is always reported as well")};
 }
 
-// The reference section: the shared one (reduced_sections.hpp) and a particle file in place of the direct run.
-ParamSchema reference_section_schema() {
-  ParamSchema s = reference_schema();
-  for (auto& p : reference_file_schema()) s.push_back(std::move(p));
-  return s;
-}
-
 using DirectProfiles = ReferenceProfiles;
 class ReducedModel : public ExperimentKind {
  public:
@@ -65,7 +58,7 @@ class ReducedModel : public ExperimentKind {
             {"closure", "the deconvolution closure", "", closure_schema()},
             {"quadrature", "the stress quadrature (default exact)", "quadrature", {}},
             {"solver", "the coarse solver", "", meso_solver_schema()},
-            {"reference", "the direct SPH reference, or a particle file in its place", "", reference_section_schema()},
+            {"reference", "the direct SPH reference, or a particle file in its place", "", reference_with_file_schema()},
             {"transient", "snapshots of both solvers", "", transient_schema()},
             {"oracle", "oracle substitution from the direct SPH (the error budget)", "", oracle_schema()},
             {"timing", "how the reduced run is repeated for its time (minimum, median, spread)", "",
@@ -88,7 +81,7 @@ class ReducedModel : public ExperimentKind {
     out["solver"] = resolve_section(cell, "solver", meso_solver_schema(), path);
     check_time_loop(out["solver"], path + "/solver");
     check_implicit_closure(out["solver"], out["closure"]["deconvolver"], path);
-    out["reference"] = resolve_section(cell, "reference", reference_section_schema(), path);
+    out["reference"] = resolve_section(cell, "reference", reference_with_file_schema(), path);
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
     check_time_loop(out["reference"]["solver"], path + "/reference/solver");
@@ -285,10 +278,7 @@ class ReducedModel : public ExperimentKind {
     }
     finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, reduced.deconvolution_issues,
                        direct && file.empty() ? &direct->run : nullptr);
-    if (!file.empty()) {  // no direct run was timed: no speed-up (null, not 0)
-      row["cost"]["speed_up"] = nullptr;
-      row["cost"]["speed_up_note"] = "none: the reference was read from a file (reference.file), no direct run was timed";
-    }
+    if (!file.empty()) mark_untimed_reference(row);  // no direct run was timed: no speed-up (null, not 0)
     row["profile"] = profile;
     return row;
   }

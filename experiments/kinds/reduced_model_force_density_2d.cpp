@@ -1,8 +1,10 @@
 // Experiment kind "reduced_model_2d_force_density": the linearised force-density reduced model in two dimensions
 // with solids (core/reduced/force_density_2d.hpp) on a scene periodic in x, and in y or walled in y (the cylinder
 // lattice, the channels as one column), against the
-// averaged direct SPH of the same box at steady state, with the Darcy permeability beside the scene's reference,
-// and the cost and speed-up (the reduced run repeated as the timing section says).
+// averaged direct SPH of the same box at steady state (or a particle file in its place, reference.file:
+// experiments/kinds/reference_profiles.hpp, averaged onto the coarse mesh by the same call), with the Darcy
+// permeability beside the scene's reference, and the cost and speed-up (the reduced run repeated as the timing
+// section says; no speed-up against a file).
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -16,6 +18,7 @@
 #include "experiments/kinds/permeability_validation.hpp"
 #include "experiments/kinds/reduced_model_2d.hpp"
 #include "experiments/kinds/reduced_sections.hpp"
+#include "experiments/kinds/reference_profiles.hpp"
 #include "experiments/runner/cell_config.hpp"
 #include "experiments/runner/provenance.hpp"
 
@@ -76,7 +79,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
             {"closure", "the deconvolution closure (dense operators on the reconstruction mesh)", "",
              force_density_closure_schema()},
             {"solver", "the 2D force-density solver", "", force_density_2d_schema()},
-            {"reference", "the direct SPH reference", "", reference_schema()},
+            {"reference", "the direct SPH reference, or a particle file in its place", "", reference_with_file_schema()},
             {"timing", "how the reduced run is repeated for its time (minimum, median, spread)", "",
              reduced_timing_schema()}};
   }
@@ -89,13 +92,14 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     out["closure"] = resolve_section(cell, "closure", force_density_closure_schema(), path);
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
     out["solver"] = resolve_section(cell, "solver", force_density_2d_schema(), path);
-    out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
+    out["reference"] = resolve_section(cell, "reference", reference_with_file_schema(), path);
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
     check_time_loop(out["reference"]["solver"], path + "/reference/solver");
     if (out["reference"]["direct_sph"].get<bool>())
       check_direct_run(*scene, out["reference"]["solver"], path + "/reference/solver");
     out["timing"] = resolve_section(cell, "timing", reduced_timing_schema(), path);
+    check_reference_file(cell, out, *scene, path);  // reference_profiles.hpp
     try {
       check_force_density_2d(*scene, *kernel, options(out));
       check_force_density_closure(out["closure"]["deconvolver"], "");
@@ -110,7 +114,12 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
     const ForceDensity2DOptions opt = options(cfg);
     std::optional<StoredReference> direct;
-    if (cfg.at("reference").at("direct_sph").get<bool>()) {
+    std::optional<ReferenceFile> from_file;  // reference.file in place of the direct run
+    const std::string file = cfg.at("reference").at("file").get<std::string>();
+    if (!file.empty()) {
+      progress("reading the reference '" + file + "'");
+      from_file = read_reference_file(*scene, file, cfg.at("reference").at("step").get<int>(), "/reference/file");
+    } else if (cfg.at("reference").at("direct_sph").get<bool>()) {
       const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("reference").at("solver"),
                                      cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene->eta,
                                      {}};
@@ -187,16 +196,21 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     if (reduced.status != Status::converged) row["message"] = reduced.message;
     row["reduced_model"] = reduced.to_json();
     if (two_pass) row["reduced_model"]["two_pass_rule"] = two_pass_record;
-    if (direct) {
-      const MesoFields f = average_particles(direct->particles, scene->box, *kernel, mesh, AveragingRequest{});
+    // The reference's particles, the direct run's final state or the file's, averaged and scored alike.
+    const ParticleSystem* reference = direct ? &direct->particles : from_file ? &from_file->particles : nullptr;
+    if (reference) {
+      const MesoFields f = average_particles(*reference, scene->box, *kernel, mesh, AveragingRequest{});
       const Field direct_field{f.vx, f.vy};
       const double scale = speed(direct_field).maxCoeff();
       errors["vs_averaged_direct_sph"] = norms(reduced_field, direct_field, outside, scale);
       errors["scale_peak_speed_of_averaged_direct_sph"] = scale;
       fields["direct_average"] = field_json(direct_field);
-      row["direct_sph"] = direct->run;
+      if (direct)
+        row["direct_sph"] = direct->run;
+      else
+        row["reference_file"] = from_file->record;
       if (k_reduced) {
-        const double k_direct = darcy_permeability(*scene, direct->particles);
+        const double k_direct = darcy_permeability(*scene, *reference);
         const double to_k = mu / (scene->rho0 * scene->permeability->body_force);
         errors["permeability"]["direct_sph"] = k_direct;
         errors["permeability"]["direct_sph_from_coarse_momentum"] = to_k * momentum_mean(direct_field.x);
@@ -214,14 +228,17 @@ class ReducedModelForceDensity2D : public ExperimentKind {
                  {"deconvolution_matvecs", reduced.deconvolution_matvecs}};
     finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, reduced.deconvolution_issues,
                        direct ? &direct->run : nullptr);
+    if (from_file) mark_untimed_reference(row);  // no direct run was timed: no speed-up (null, not 0)
     row["fields"] = fields;
     return row;
   }
 
-  // The direct reference dominates: particles n² times steps ~ n².
+  // The direct reference dominates: particles n² times steps ~ n² (none with a file in its place).
   double expected_cost(const json& cfg) const override {
     const double n = cfg.at("scene").value("n", 48);
-    return cfg.at("reference").at("direct_sph").get<bool>() ? n * n * n * n : n * n;
+    const bool runs_direct =
+        cfg.at("reference").at("direct_sph").get<bool>() && cfg.at("reference").value("file", "").empty();
+    return runs_direct ? n * n * n * n : n * n;
   }
 
  private:

@@ -9,6 +9,7 @@
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/pysph_output.hpp"
+#include "experiments/kinds/reduced_sections.hpp"
 #include "experiments/kinds/reference_store.hpp"
 
 namespace closurelab {
@@ -51,6 +52,12 @@ ParamSchema reference_file_schema() {
                         -1, {})};
 }
 
+ParamSchema reference_with_file_schema() {
+  ParamSchema s = reference_schema();
+  for (auto& p : reference_file_schema()) s.push_back(std::move(p));
+  return s;
+}
+
 namespace {
 
 std::string layout_of(const std::string& file) {
@@ -84,7 +91,9 @@ ReferenceFile read_reference_file(const Scene& scene, const std::string& file, i
   if (p.size() != expected)
     throw ConfigError(path, "'" + file + "' holds " + std::to_string(p.size()) + " particles, the scene '" + scene.name +
                                 "' has " + std::to_string(expected) + ": a snapshot of another scene or resolution");
-  double y_lo = std::numeric_limits<double>::infinity(), y_hi = -y_lo;
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
+  // The nearest lattice site's coordinate, (i + 1/2) dx.
+  const auto site = [&](double c) { return (std::lround(c / scene.dx - 0.5) + 0.5) * scene.dx; };
   for (std::size_t a = 0; a < p.size(); ++a) {
     if (!(p.x[a] >= 0 && p.x[a] < scene.box.lx && p.y[a] >= 0 && p.y[a] < scene.box.ly))
       throw ConfigError(path, "'" + file + "': particle " + std::to_string(a) + " at (" + std::to_string(p.x[a]) + ", " +
@@ -93,15 +102,21 @@ ReferenceFile read_reference_file(const Scene& scene, const std::string& file, i
     if (p.phase[a] >= static_cast<int>(scene.phase_viscosity.size()))
       throw ConfigError(path, "'" + file + "': particle " + std::to_string(a) + " has phase " + std::to_string(p.phase[a]) +
                                   ", the scene has " + std::to_string(scene.phase_viscosity.size()));
-    if (!snap.has_fixed) p.fixed[a] = scene.is_wall(p.y[a]) ? 1 : 0;
+    if (!snap.has_fixed) p.fixed[a] = scene.is_solid(site(p.x[a]), site(p.y[a])) ? 1 : 0;
+    x_lo = std::min(x_lo, p.x[a]);
+    x_hi = std::max(x_hi, p.x[a]);
     y_lo = std::min(y_lo, p.y[a]);
     y_hi = std::max(y_hi, p.y[a]);
   }
-  // The lattice fills the box: its first and last rows lie within one spacing of the box's ends.
-  if (y_lo > scene.dx || y_hi < scene.box.ly - scene.dx)
-    throw ConfigError(path, "'" + file + "': the particles span y in [" + std::to_string(y_lo) + ", " +
-                                std::to_string(y_hi) + "], the scene's box is [0, " + std::to_string(scene.box.ly) +
-                                "): a snapshot of another box");
+  // The lattice fills the box: its first and last rows and columns lie within one spacing of the box's ends.
+  const auto spans = [&](const char* axis, double lo, double hi, double length) {
+    if (lo > scene.dx || hi < length - scene.dx)
+      throw ConfigError(path, "'" + file + "': the particles span " + axis + " in [" + std::to_string(lo) + ", " +
+                                  std::to_string(hi) + "], the scene's box is [0, " + std::to_string(length) +
+                                  "): a snapshot of another box");
+  };
+  spans("y", y_lo, y_hi, scene.box.ly);
+  spans("x", x_lo, x_hi, scene.box.lx);
   ReferenceFile out;
   out.record = {{"path", file},
                 {"bytes", static_cast<std::uintmax_t>(std::filesystem::file_size(file, ec))},
@@ -110,7 +125,7 @@ ReferenceFile read_reference_file(const Scene& scene, const std::string& file, i
                 {"step", step},
                 {"time", snap.time},
                 {"particles", p.size()},
-                {"fixed_from", snap.has_fixed ? "file" : "scene walls"}};
+                {"fixed_from", snap.has_fixed ? "file" : "scene"}};
   out.particles = std::move(p);
   return out;
 }
@@ -131,10 +146,15 @@ void check_reference_file(const json& cell, const json& out, const Scene& scene,
   for (const char* key : {"solver", "observe_spacing_over_eta"})
     if (given.contains(key))
       throw ConfigError(path + "/reference/" + key, "the direct run's parameters are not used with reference.file");
-  if (!out.at("transient").at("t_star").empty())
+  if (out.contains("transient") && !out.at("transient").at("t_star").empty())
     throw ConfigError(path + "/transient/t_star", "transient snapshots need the direct run's history; a reference "
                                                   "read from a file (reference.file) is one state");
   read_reference_file(scene, file, ref.at("step").get<int>(), path + "/reference/file");
+}
+
+void mark_untimed_reference(json& row) {
+  row["cost"]["speed_up"] = nullptr;
+  row["cost"]["speed_up_note"] = "none: the reference was read from a file (reference.file), no direct run was timed";
 }
 
 }  // namespace closurelab

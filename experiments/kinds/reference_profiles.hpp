@@ -29,23 +29,30 @@ Eigen::VectorXd average_on_nodes(const ParticleSystem& particles, const Scene& s
 ReferenceProfiles reference_profiles(const ParticleSystem& particles, const Scene& scene,
                                      const AveragingKernel& kernel, const Eigen::VectorXd& nodes);
 
-// The "file" and "step" parameters that the reduced kind adds to its reference section.
+// The "file" and "step" parameters that the reduced kinds add to their reference section.
 ParamSchema reference_file_schema();
+// The shared reference section (reduced_sections.hpp) with "file" and "step".
+ParamSchema reference_with_file_schema();
 
 struct ReferenceFile {
-  ParticleSystem particles;  // held-fixed flags from the scene's walls where the file has none
+  ParticleSystem particles;  // held-fixed flags from the scene (walls and solids) where the file has none
   json record;               // path, bytes, fnv1a64, layout, step, time, particles
 };
 
 // Reads `file` at `step` and checks it against the scene: readable, the scene's particle count, every particle
-// inside the box [0, lx) x [0, ly) with a phase the scene has, and the lattice's extent in y (a snapshot of
-// another box). ConfigError at JSON path `path` (the cell's /reference/file) on any of these.
+// inside the box [0, lx) x [0, ly) with a phase the scene has, and the lattice's extent in x and y (a snapshot of
+// another box). ConfigError at JSON path `path` (the cell's /reference/file) on any of these. Where the file has
+// no held-fixed flags, a particle is held fixed when the scene holds its nearest lattice site (Scene::is_solid:
+// walls and solids), as the scene's own lattice is built.
 ReferenceFile read_reference_file(const Scene& scene, const std::string& file, int step, const std::string& path);
 
 // The resolve-time checks of a cell (`cell` as given, `out` its resolved sections, errors under `path`): with
-// reference.file, no transient t_star (the direct run's history), no reference.solver or observe_spacing_over_eta
-// given (they would be silently unused), direct_sph not false, and the file read and checked (read_reference_file);
-// without one, no reference.step.
+// reference.file, no transient t_star (the direct run's history; where the kind has a transient section), no
+// reference.solver or observe_spacing_over_eta given (they would be silently unused), direct_sph not false, and the
+// file read and checked (read_reference_file); without one, no reference.step.
 void check_reference_file(const json& cell, const json& out, const Scene& scene, const std::string& path);
+
+// A row whose reference was read from a file: no direct run was timed, so no speed-up (null, not 0), and a note.
+void mark_untimed_reference(json& row);
 
 }  // namespace closurelab

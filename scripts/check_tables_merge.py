@@ -8,7 +8,7 @@ row (the same JSON once cell_fnv1a64 is set aside) and that every cell file is s
 refuses as "computed with other parameters" (cells older than a default added since, which a run would recompute)
 is still checked to be its cells. Prints one line per table; exit 1 if any check fails.
 
-usage: scripts/check_tables_merge.py CLOSURELAB [RESULTS_DIR]   (RESULTS_DIR default: results)
+usage: scripts/check_tables_merge.py CLOSURELAB [RESULTS_DIR ...]   (default: results)
 """
 import glob
 import json
@@ -68,9 +68,9 @@ def check(closurelab, path, table):
         return same, f"rows are the sealed cells; merge exit {r.returncode}, " + ("byte-identical" if same else "DIFFERS")
 
 
-def main(closurelab, results_dir="results"):
+def main(closurelab, *results_dirs):
     bad = 0
-    for path, table in tables(results_dir):
+    for path, table in (t for d in (results_dirs or ("results",)) for t in tables(d)):
         ok, what = check(closurelab, path, table)
         bad += not ok
         print(f"{path}: {len(table['rows'])} rows, {what}")
@@ -79,6 +79,6 @@ def main(closurelab, results_dir="results"):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) not in (2, 3):
+    if len(sys.argv) < 2:
         sys.exit(__doc__)
     sys.exit(main(*sys.argv[1:]))

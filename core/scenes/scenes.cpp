@@ -72,6 +72,12 @@ double Scene::max_viscosity() const {
   return m;
 }
 
+double Scene::time_scale() const {
+  if (cellular_mode && cellular_mode->decay_rate > 0.0) return 1.0 / cellular_mode->decay_rate;
+  const double length = has_walls ? wall_hi - wall_lo : box.ly;
+  return analytic_peak > 0.0 ? length / analytic_peak : 0.0;
+}
+
 double Scene::viscosity_at(const Vec2& point) const { return phase_viscosity.at(phase(point.y())); }
 
 ParamSchema wall_model_params() {

@@ -124,6 +124,11 @@ struct Scene {
   };
   std::optional<Permeability> permeability;
 
+  // The time unit τ of a transient's snapshot times t/τ (the reduced models' `transient.t_over_tau`): the
+  // cellular mode's decay time 1/(2k²ν) where the scene has one, else the advective time L/v_max, L the channel's
+  // width between the wall surfaces (L_y without walls) and v_max the analytic peak; 0 when the scene has neither.
+  double time_scale() const;
+
   bool is_wall(double y) const { return has_walls && (y < wall_lo || y > wall_hi); }
   // A lattice particle at (x, y) is held fixed: inside a wall in y or a solid of solid_at.
   bool is_solid(double x, double y) const { return is_wall(y) || (solid_at && solid_at(x, y)); }

@@ -43,6 +43,9 @@ class ExperimentKind {
   // solver.max_time), from particles ~ n_y^2 at a fixed aspect ratio and steps ~ t / dt with dt ~ h ~ 1/n_y;
   // a factor missing from the cell counts as 1.
   virtual double expected_cost(const json& resolved) const;
+  // A stored row's resolved parameters as this version resolves them, so that cells computed before a parameter
+  // was renamed still match their specs (resume and merge compare them; results_table.hpp). Default: as stored.
+  virtual json upgraded_params(json stored) const { return stored; }
 };
 
 // The built-in experiment kinds (experiments/kinds/experiment_kinds.cpp lists them explicitly).

@@ -37,12 +37,6 @@ ParamSchema oracle_schema() {
                        names_of<BoundaryOracle>())};
 }
 
-ParamSchema transient_schema() {
-  return {array_param("t_star", json::array(),
-                      "dimensionless snapshot times t* = t v_max / L (ascending; v_max: the analytic peak, L: the "
-                      "channel width, or L_y without walls); the steady state is always reported as well")};
-}
-
 using DirectProfiles = ReferenceProfiles;
 class ReducedModel : public ExperimentKind {
  public:
@@ -86,14 +80,13 @@ class ReducedModel : public ExperimentKind {
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
     check_time_loop(out["reference"]["solver"], path + "/reference/solver");
     if (out["reference"]["direct_sph"].get<bool>()) check_direct_run(*scene, out["reference"]["solver"], path + "/reference/solver");
-    out["transient"] = resolve_section(cell, "transient", transient_schema(), path);
+    out["transient"] = resolve_transient(cell, path);
     out["oracle"] = resolve_section(cell, "oracle", oracle_schema(), path);
     out["timing"] = resolve_section(cell, "timing", reduced_timing_schema(), path);
     if (uses_oracles(out) && !out["reference"]["direct_sph"].get<bool>())
       throw ConfigError(path + "/oracle", "an oracle needs the direct SPH reference (reference.direct_sph = true)");
     if (out["oracle"]["boundary"] != "none" && !scene->has_walls)
       throw ConfigError(path + "/oracle/boundary", "scene '" + scene->name + "' has no walls");
-    check_snapshot_times(out["transient"]["t_star"], path + "/transient/t_star");
     check_reference_file(cell, out, *scene, path);  // reference_profiles.hpp
     // Cheap structural checks now (coarse mesh, quadrature fit) so that a bad cell fails before any runs; the
     // strategies are set up once, when the cell runs.
@@ -106,12 +99,17 @@ class ReducedModel : public ExperimentKind {
     return out;
   }
 
+  // Rows stored before reference.file and before the transient's one vocabulary (t_star, now t_over_tau).
+  json upgraded_params(json stored) const override {
+    return upgraded_transient_params(with_reference_file_defaults(std::move(stored)));
+  }
+
   json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
     const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
     const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
     MesoSolverOptions opt = options(cfg);
     opt.progress = progress;
-    opt.snapshot_times = snapshot_times(cfg, *scene);
+    opt.snapshot_times = transient_times(cfg.at("transient"), *scene);
     // The direct reference first: the oracles need it before the reduced run.
     std::optional<DirectProfiles> direct;
     json reference_file;  // the file's record when the reference is read from one
@@ -252,11 +250,11 @@ class ReducedModel : public ExperimentKind {
         row["direct_sph"] = run;
       else
         row["reference_file"] = reference_file;
-      // The transient: both runs at the same model times t = t* L / v_max.
+      // The transient: both runs at the same model times t = (t / τ) τ.
       json transient = json::array();
-      const json& t_star = cfg.at("transient").at("t_star");
-      for (std::size_t k = 0; k < t_star.size(); ++k) {
-        json snap = {{"t_star", t_star[k]}, {"time", opt.snapshot_times[k]}};
+      const json& t_over_tau = cfg.at("transient").at("t_over_tau");
+      for (std::size_t k = 0; k < t_over_tau.size(); ++k) {
+        json snap = {{"t_over_tau", t_over_tau[k]}, {"time", opt.snapshot_times[k]}};
         // A run that reached steady state before this time stays there: its final state stands in.
         const bool reduced_has = k < reduced_snapshots.size() || reduced.status == Status::converged;
         const bool direct_has = k < direct_snapshots.size() || run.at("status") == "converged";
@@ -274,7 +272,7 @@ class ReducedModel : public ExperimentKind {
         }
         transient.push_back(snap);
       }
-      if (!t_star.empty()) row["transient"] = transient;
+      if (!t_over_tau.empty()) row["transient"] = transient;
     }
     finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, reduced.deconvolution_issues,
                        direct && file.empty() ? &direct->run : nullptr);
@@ -295,13 +293,6 @@ class ReducedModel : public ExperimentKind {
     return o;
   }
 
-  static std::vector<double> snapshot_times(const json& cfg, const Scene& scene) {
-    const double length = scene.has_walls ? scene.wall_hi - scene.wall_lo : scene.box.ly;
-    std::vector<double> times;
-    for (const json& t : cfg.at("transient").at("t_star")) times.push_back(t.get<double>() * length / scene.analytic_peak);
-    return times;
-  }
-
   // The averaged direct SPH velocity at `nodes` (final state and each snapshot), the direct run's record, and
   // the final particle velocity as an x-mean per fluid lattice row.
   static DirectProfiles direct_reference(const json& cfg, const Scene& scene,
@@ -309,7 +300,7 @@ class ReducedModel : public ExperimentKind {
                                                            const ProgressFn& progress) {
     const double spacing = cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene.eta;
     const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("reference").at("solver"),
-                                   column_mesh(scene.box, spacing).y.spacing, snapshot_times(cfg, scene)};
+                                   column_mesh(scene.box, spacing).y.spacing, transient_times(cfg.at("transient"), scene)};
     const StoredReference c = stored_direct_reference(request, scene, kernel, progress);
     DirectProfiles out = reference_profiles(c.particles, scene, kernel, nodes);
     out.run = c.run;

@@ -21,12 +21,6 @@ namespace closurelab {
 
 namespace {
 
-ParamSchema transient_schema() {
-  return {array_param("t_over_tau", json::array(),
-                      "snapshot times in units of the mode's decay time tau = 1 / (2 k^2 nu) (ascending); the final "
-                      "state is always reported as well")};
-}
-
 // A vector field at the nodes of a mesh, flat j * nx + i.
 struct Field {
   Eigen::VectorXd x, y;
@@ -98,8 +92,7 @@ class ReducedModel2D : public ExperimentKind {
     check_time_loop(out["reference"]["solver"], path + "/reference/solver");
     if (out["reference"]["direct_sph"].get<bool>())
       check_direct_run(*scene, out["reference"]["solver"], path + "/reference/solver");
-    out["transient"] = resolve_section(cell, "transient", transient_schema(), path);
-    check_snapshot_times(out["transient"]["t_over_tau"], path + "/transient/t_over_tau");
+    out["transient"] = resolve_transient(cell, path);
     out["timing"] = resolve_section(cell, "timing", reduced_timing_schema(), path);
     try {
       check_meso_solver_2d(*scene, *kernel, *reg.quadratures.create(out["quadrature"], "/quadrature"), options(out));
@@ -114,10 +107,10 @@ class ReducedModel2D : public ExperimentKind {
     const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
     const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
     const Scene::CellularMode& mode = scene->cellular_mode.value();
-    const double k = mode.wavenumber, scale = scene->analytic_peak, tau = 1.0 / mode.decay_rate;
+    const double k = mode.wavenumber, scale = scene->analytic_peak, tau = scene->time_scale();
     MesoSolver2DOptions opt = options(cfg);
     opt.progress = progress;
-    for (const json& t : cfg.at("transient").at("t_over_tau")) opt.snapshot_times.push_back(t.get<double>() * tau);
+    opt.snapshot_times = transient_times(cfg.at("transient"), *scene);
 
     std::optional<StoredReference> direct;
     if (cfg.at("reference").at("direct_sph").get<bool>()) {

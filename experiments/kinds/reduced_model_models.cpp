@@ -69,6 +69,19 @@ class ReducedModelAnyGeometry : public ExperimentKind {
     return chosen(cfg, reg).run(rest, reg, progress);
   }
 
+  // The chosen model's upgrade (a stored row whose scene no registry knows is compared as stored).
+  json upgraded_params(json stored) const override {
+    json rest = stored;
+    rest.erase("model");
+    try {
+      json out = chosen(stored, builtin_registry()).upgraded_params(std::move(rest));
+      if (stored.contains("model")) out["model"] = stored["model"];
+      return out;
+    } catch (const ConfigError&) {
+      return stored;
+    }
+  }
+
   // Only the order matters: a scene only the user's registry knows takes the column's estimate.
   double expected_cost(const json& cfg) const override {
     json rest = cfg;

@@ -7,6 +7,7 @@
 #include "core/base/errors.hpp"
 #include "core/closure/forward_operator.hpp"
 #include "core/sph/engine_version.hpp"
+#include "experiments/runner/cell_config.hpp"
 #include "experiments/runner/provenance.hpp"
 
 namespace closurelab {
@@ -32,6 +33,50 @@ void check_snapshot_times(const json& times, const std::string& path) {
       throw ConfigError(path + "/" + std::to_string(k), "snapshot times must be finite numbers, positive and ascending");
     previous = t.get<double>();
   }
+}
+
+ParamSchema transient_schema() {
+  return {array_param("t_over_tau", json::array(),
+                      "snapshot times t / tau (ascending), tau the scene's time scale: the cellular mode's decay time "
+                      "1 / (2 k^2 nu), else the advective time L / v_max (L the channel width, or L_y without walls; "
+                      "v_max the analytic peak); t_star, the column model's earlier name of the same times, is read "
+                      "as t_over_tau; the final state is always reported as well")};
+}
+
+std::string transient_times_key(const json& cell) {
+  const bool legacy = cell.is_object() && cell.contains("transient") && cell["transient"].is_object() &&
+                      cell["transient"].contains("t_star");
+  return legacy ? "t_star" : "t_over_tau";
+}
+
+json resolve_transient(const json& cell, const std::string& path) {
+  const std::string key = transient_times_key(cell);
+  json section = cell.is_object() && cell.contains("transient") ? cell["transient"] : json();
+  if (key == "t_star") {
+    if (section.contains("t_over_tau"))
+      throw ConfigError(path + "/transient/t_star", "t_star is the earlier name of t_over_tau; give one of them");
+    section["t_over_tau"] = section["t_star"];
+    section.erase("t_star");
+  }
+  json out = resolve_section(json{{"transient", section}}, "transient", transient_schema(), path);
+  check_snapshot_times(out["t_over_tau"], path + "/transient/" + key);
+  return out;
+}
+
+std::vector<double> transient_times(const json& transient, const Scene& scene) {
+  std::vector<double> times;
+  for (const json& t : transient.at("t_over_tau")) times.push_back(t.get<double>() * scene.time_scale());
+  return times;
+}
+
+json upgraded_transient_params(json params) {
+  if (params.is_object() && params.contains("transient") && params["transient"].is_object() &&
+      params["transient"].contains("t_star")) {
+    json& t = params["transient"];
+    t["t_over_tau"] = t["t_star"];
+    t.erase("t_star");
+  }
+  return params;
 }
 
 ParamSchema reduced_timing_schema() { return timing_schema(); }

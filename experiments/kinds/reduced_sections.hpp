@@ -1,6 +1,6 @@
 #pragma once
-// The spec sections that the reduced-model kinds share (reduced_model in 1D, reduced_model_2d): the closure
-// and the direct SPH reference.
+// The spec sections that the reduced-model kinds share (reduced_model in 1D, reduced_model_2d): the closure,
+// the direct SPH reference, the transient and the timing.
 #include <functional>
 #include <string>
 
@@ -10,6 +10,7 @@
 #include "core/closure/deconvolver.hpp"
 #include "core/closure/forward_operator.hpp"
 #include "core/reduced/meso_solver.hpp"
+#include "core/sph/scene.hpp"
 
 namespace closurelab {
 
@@ -20,6 +21,21 @@ ParamSchema reference_schema();
 // A transient section's snapshot times (`times`, an array at JSON path `path`): finite, positive, ascending;
 // ConfigError at the first that is not.
 void check_snapshot_times(const json& times, const std::string& path);
+
+// "transient", the reduced models' one vocabulary: snapshot times `t_over_tau`, t / τ with τ the scene's time
+// scale (Scene::time_scale()). The column model's earlier name `t_star` (t v_max / L, which is t / τ for its
+// scenes) is read as t_over_tau; rows stored under it still match their specs (upgraded_transient_params).
+ParamSchema transient_schema();
+// The key of `cell`'s transient section that holds its times as the cell wrote it ("t_star" or "t_over_tau"), for
+// error paths.
+std::string transient_times_key(const json& cell);
+// The resolved transient section of `cell` (at JSON path `path`): {"t_over_tau": [...]}, the times checked; both
+// names at once is a ConfigError.
+json resolve_transient(const json& cell, const std::string& path);
+// The snapshot model times t = (t / τ) τ of a resolved transient section.
+std::vector<double> transient_times(const json& transient, const Scene& scene);
+// A stored row's resolved parameters as this version resolves them: transient.t_star renamed t_over_tau.
+json upgraded_transient_params(json params);
 
 // "timing": how the reduced run is repeated (core/base/repeated_timing.hpp).
 ParamSchema reduced_timing_schema();

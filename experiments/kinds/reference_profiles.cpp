@@ -58,6 +58,15 @@ ParamSchema reference_with_file_schema() {
   return s;
 }
 
+json with_reference_file_defaults(json params) {
+  if (params.is_object() && params.contains("reference") && params["reference"].is_object()) {
+    json& ref = params["reference"];
+    for (const ParamSpec& p : reference_file_schema())
+      if (!ref.contains(p.name)) ref[p.name] = p.default_value;
+  }
+  return params;
+}
+
 namespace {
 
 std::string layout_of(const std::string& file) {
@@ -146,8 +155,8 @@ void check_reference_file(const json& cell, const json& out, const Scene& scene,
   for (const char* key : {"solver", "observe_spacing_over_eta"})
     if (given.contains(key))
       throw ConfigError(path + "/reference/" + key, "the direct run's parameters are not used with reference.file");
-  if (out.contains("transient") && !out.at("transient").at("t_star").empty())
-    throw ConfigError(path + "/transient/t_star", "transient snapshots need the direct run's history; a reference "
+  if (out.contains("transient") && !out.at("transient").at("t_over_tau").empty())
+    throw ConfigError(path + "/transient/" + transient_times_key(cell), "transient snapshots need the direct run's history; a reference "
                                                   "read from a file (reference.file) is one state");
   read_reference_file(scene, file, ref.at("step").get<int>(), path + "/reference/file");
 }

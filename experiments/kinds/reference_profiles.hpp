@@ -33,6 +33,10 @@ ReferenceProfiles reference_profiles(const ParticleSystem& particles, const Scen
 ParamSchema reference_file_schema();
 // The shared reference section (reduced_sections.hpp) with "file" and "step".
 ParamSchema reference_with_file_schema();
+// A stored row's parameters from before reference.file existed (its reference section without `file` and `step`):
+// it ran against the direct SPH, which is what the defaults (no file, step -1) ask for, so they are filled in
+// (ExperimentKind::upgraded_params of the kinds whose reference section has them).
+json with_reference_file_defaults(json params);
 
 struct ReferenceFile {
   ParticleSystem particles;  // held-fixed flags from the scene (walls and solids) where the file has none

@@ -49,7 +49,7 @@ std::string cell_checksum(const json& row) {
   return fnv1a64_hex(dump_canonical(canonical));
 }
 
-StoredCell read_cell(const fs::path& file, const json& resolved) {
+StoredCell read_cell(const fs::path& file, const json& resolved, const std::function<json(json)>& upgrade) {
   StoredCell c;
   std::error_code ec;
   if (!fs::exists(file, ec)) return c;
@@ -80,7 +80,8 @@ StoredCell read_cell(const fs::path& file, const json& resolved) {
     return c;
   }
   row.erase(cell_checksum_key);
-  if (row.value("params", json()) != resolved) {
+  const json params = row.value("params", json());
+  if ((upgrade ? upgrade(params) : params) != resolved) {
     c.state = StoredCell::State::other_params;
     c.problem = "computed with other parameters";
     return c;

@@ -3,6 +3,7 @@
 // DIR/<name>.json. A run and `closurelab merge` write the table with the same function, so a merged table is the
 // one a single run would have written.
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,8 +36,11 @@ struct StoredCell {
   bool usable() const { return row.has_value(); }
 };
 
-// What `file` holds for a cell with these resolved parameters (whatever the row's status).
-StoredCell read_cell(const std::filesystem::path& file, const json& resolved);
+// What `file` holds for a cell with these resolved parameters (whatever the row's status). The row's stored
+// parameters are compared after `upgrade` (the kind's ExperimentKind::upgraded_params: an earlier name of a renamed
+// parameter mapped to today's), the row itself kept as it was computed.
+StoredCell read_cell(const std::filesystem::path& file, const json& resolved,
+                     const std::function<json(json)>& upgrade = {});
 
 // The checksum a cell file carries for `row` (without cell_checksum_key).
 std::string cell_checksum(const json& row);

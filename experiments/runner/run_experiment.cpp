@@ -75,7 +75,7 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
     mine.push_back(i);
     mine_ids.push_back(cells[i].id);
     const fs::path file = cell_file(options.out_dir, cells[i].id);
-    StoredCell stored = options.force ? StoredCell{} : read_cell(file, matrix->resolved[i]);
+    StoredCell stored = options.force ? StoredCell{} : read_cell(file, matrix->resolved[i], [&](json p) { return matrix->kind->upgraded_params(std::move(p)); });
     // A damaged, edited or unsealed file is never taken as this cell's result, and never replaced without a word.
     using State = StoredCell::State;
     if (stored.state == State::unreadable || stored.state == State::edited || stored.state == State::unsealed) {

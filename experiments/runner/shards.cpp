@@ -8,6 +8,7 @@
 #include <regex>
 
 #include "core/base/errors.hpp"
+#include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/runner/out_folder.hpp"
 #include "experiments/runner/provenance.hpp"
 #include "experiments/runner/results_table.hpp"
@@ -96,7 +97,7 @@ int merge_shards(const std::string& dir, const Registry& registry, const std::st
   std::size_t unsealed = 0;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const fs::path file = cell_file(dir, cells[i].id);
-    StoredCell stored = read_cell(file, matrix->resolved[i]);
+    StoredCell stored = read_cell(file, matrix->resolved[i], [&](json p) { return matrix->kind->upgraded_params(std::move(p)); });
     if (stored.usable()) {
       rows.push_back(std::move(*stored.row));
       continue;

@@ -17,6 +17,12 @@ PAPER = {"case1": 0.10, "case2": 0.06, "case3": 0.02}  # par. 7, second-order cl
 PAPER_CLOSURE = "landweber n=2 (paper)"
 
 
+
+def snapshot_time(s):
+    """A transient snapshot's t / tau (t* = t v_max / L for the channels): t_over_tau, or t_star in rows stored before
+    the reduced models shared one transient vocabulary."""
+    return s["t_over_tau"] if "t_over_tau" in s else s["t_star"]
+
 def pct(x):
     return "-" if x is None else f"{100 * x:+.2f} %"
 
@@ -93,7 +99,7 @@ def main(args):
             L += [f"\nTransient of the second-order closure ({c}): the reduced model against the averaged direct SPH at the same model time.\n",
                   "| t* | t | max vs direct | peak vs direct | direct peak |", "|---|---|---|---|---|"]
             for s in base[0]["transient"]:
-                L.append(f"| {fmt(s['t_star'])} | {fmt(s['time'])} | {fmt(get(s, 'vs_averaged_direct_sph', 'fluid_nodes', 'max_rel'))} | "
+                L.append(f"| {fmt(snapshot_time(s))} | {fmt(s['time'])} | {fmt(get(s, 'vs_averaged_direct_sph', 'fluid_nodes', 'max_rel'))} | "
                          f"{pct(get(s, 'vs_averaged_direct_sph', 'peak_relative_difference'))} | {fmt(max(s['direct_average'])) if 'direct_average' in s else '-'} |")
     if eta_path and os.path.exists(eta_path):
         eta_table = load_table(eta_path)
@@ -129,7 +135,7 @@ def main(args):
         for k, s in enumerate(r.get("transient", [])):
             if "reduced" not in s:
                 continue
-            ax.plot(y, s["direct_average"], "-", color=f"C{k}", label=f"direct, t* = {s['t_star']:.3g}")
+            ax.plot(y, s["direct_average"], "-", color=f"C{k}", label=f"direct, t* = {snapshot_time(s):.3g}")
             ax.plot(y, s["reduced"], "d", color=f"C{k}", mfc="none")
         ax.plot(y, r["profile"]["direct_average"], "k-", label="direct, steady")
         ax.plot(y, r["profile"]["reduced"], "kd", mfc="none", label="reduced (diamonds), steady")

@@ -87,7 +87,7 @@ TEST(CliConventions, ListExperimentShowsEachKindsParameters) {
   for (const char* f : {"reduced_model", "direct_sph_validation", "deconvolution_stability", "quadrature_convergence",
                         // sections and their parameters, with types and defaults
                         "closure:", "discretization (string, default \"coarse_coarse\")", "steady_window (integer",
-                        "t_star (array", "averaging:", "mesh_spacing_over_eta (number", "problem:", "seed (integer",
+                        "t_over_tau (array", "averaging:", "mesh_spacing_over_eta (number", "problem:", "seed (integer",
                         "evaluation:", "repeats (integer",
                         // registered families are pointed to
                         "(parameters: closurelab list scene)", "(parameters: closurelab list deconvolver)"})

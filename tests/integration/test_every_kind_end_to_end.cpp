@@ -50,7 +50,7 @@ const std::map<std::string, TinyCell>& tiny_cells() {
             "quadrature": {"name": "coarse", "stride_y": 2},
             "solver": {"mode": "target_time", "target_time": 0.05, "scheme": "staggered"},
             "reference": {"direct_sph": true, "solver": {"mode": "target_time", "target_time": 0.05}},
-            "transient": {"t_star": [0.001, 0.003]}})",
+            "transient": {"t_over_tau": [0.001, 0.003]}})",
         {"/errors/vs_analytic/all_nodes/max_rel", "/errors/vs_averaged_analytic/interior/max_rel",
          "/errors/vs_averaged_direct_sph/all_nodes/max_rel", "/errors/vs_averaged_direct_sph/wall_band/max_rel",
          "/errors/vs_averaged_direct_sph/peak_relative_difference",

@@ -2,11 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
 
 namespace closurelab {
+
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 void retain_freed_memory() {
 #if defined(__GLIBC__)
@@ -29,7 +36,11 @@ ParamSchema timing_schema() {
           number_param("stability", d.stability,
                        "stop after min_repeats once the last min_repeats/2 + 1 runs lowered the minimum by no more "
                        "than this fraction",
-                       0.0, 1.0)};
+                       0.0, 1.0),
+          number_param("min_seconds", d.min_seconds,
+                       "timed work spent at least before the minimum may be called stable (budget and max_repeats "
+                       "permitting): runs of milliseconds sampled over a stretch of a loaded machine's time",
+                       0.0, {})};
 }
 
 TimingPolicy timing_policy_from(const json& r) {
@@ -38,6 +49,7 @@ TimingPolicy timing_policy_from(const json& r) {
   p.max_repeats = std::max(p.min_repeats, r.at("max_repeats").get<int>());
   p.budget_seconds = r.at("budget_seconds").get<double>();
   p.stability = r.at("stability").get<double>();
+  p.min_seconds = r.at("min_seconds").get<double>();
   return p;
 }
 
@@ -70,7 +82,7 @@ TimingStats repeat_until_stable(const std::function<double()>& run_once, const T
     seconds.push_back(t);
     spent += t;
     const int n = static_cast<int>(seconds.size());
-    if (n >= policy.min_repeats && n > window) {
+    if (n >= policy.min_repeats && n > window && spent >= policy.min_seconds) {
       const double before = *std::min_element(seconds.begin(), seconds.end() - window);
       const double now = *std::min_element(seconds.begin(), seconds.end());
       if (now >= before * (1.0 - policy.stability)) {

@@ -3,9 +3,10 @@
 // machine). A timed piece of work is repeated until its minimum is stable, and the record keeps the minimum,
 // the median, the largest time and their spread, so that a speed-up quotes the minimum with the spread.
 //
-// The stopping rule: at least `min_repeats` runs, then stop as soon as the last `min_repeats / 2 + 1` runs did
-// not lower the minimum by more than `stability` (relative); never more than `max_repeats` runs, and no new
-// run once `budget_seconds` of timed work is spent (so one long run is timed once, and says so).
+// The stopping rule: at least `min_repeats` runs and `min_seconds` of timed work, then stop as soon as the last
+// `min_repeats / 2 + 1` runs did not lower the minimum by more than `stability` (relative); never more than
+// `max_repeats` runs, and no new run once `budget_seconds` of timed work is spent (so one long run is timed once,
+// and says so).
 #include <chrono>
 #include <functional>
 #include <vector>
@@ -19,6 +20,10 @@ struct TimingPolicy {
   int max_repeats = 50;
   double budget_seconds = 20.0;
   double stability = 0.02;
+  // The rule does not stop as stable before this much timed work is spent, so that runs of milliseconds are
+  // sampled over a stretch of the machine's load rather than a few consecutive time slices (on a loaded machine
+  // a few runs can all be preempted and agree with each other; rows from before this floor ran with 0).
+  double min_seconds = 0.0;
 };
 
 // The spec section "timing" of the kinds that time their work repeatedly: its schema (defaults from
@@ -56,6 +61,10 @@ void retain_freed_memory();
 TimingStats repeat_until_stable(const std::function<double()>& run_once, const TimingPolicy& policy);
 // Runs `work` under `policy`, each run timed on the steady clock.
 TimingStats time_repeatedly(const std::function<void()>& work, const TimingPolicy& policy);
+
+// The CPU seconds this process has used (every thread): the cost of a piece of work in core-seconds, which, unlike
+// the wall time, does not count the time the work waited while preempted on a loaded machine.
+double process_cpu_seconds();
 
 // Seconds since `t0` on the steady clock.
 inline double seconds_since(std::chrono::steady_clock::time_point t0) {

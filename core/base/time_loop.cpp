@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/base/repeated_timing.hpp"
 #include "core/base/run_progress.hpp"
 #include "core/base/snapshot_schedule.hpp"
 
@@ -19,6 +20,7 @@ json TimeLoopResult::to_json() const {
             {"time", time},
             {"dt", dt},
             {"wall_seconds", wall_seconds},
+            {"cpu_seconds", cpu_seconds},
             {"last_relative_change", last_relative_change}};
   if (!message.empty()) j["message"] = message;
   return j;
@@ -45,6 +47,7 @@ std::string give_up_message(const TimeLoopResult& r, const TimeLoopOptions& o) {
 TimeLoopResult run_time_loop(const SteppedModel& model, const TimeLoopOptions& opt) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
+  const double cpu0 = process_cpu_seconds();
   auto last_report = t0;
   TimeLoopResult res;
   Eigen::VectorXd reference = model.observe();
@@ -110,6 +113,7 @@ TimeLoopResult run_time_loop(const SteppedModel& model, const TimeLoopOptions& o
   if (res.status != Status::numerical_issue && !model.check_state(issue)) fail(issue);
   if (res.status == Status::no_convergence) res.message = give_up_message(res, opt);
   res.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  res.cpu_seconds = process_cpu_seconds() - cpu0;
   return res;
 }
 

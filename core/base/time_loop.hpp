@@ -45,6 +45,7 @@ struct TimeLoopResult {
   std::string message;  // why, when the status is no_convergence or numerical_issue
   std::int64_t steps = 0;
   double time = 0.0, dt = 0.0, wall_seconds = 0.0, last_relative_change = 0.0;
+  double cpu_seconds = 0.0;  // the process's CPU time over the loop, every thread (repeated_timing.hpp)
   json to_json() const;
 };
 

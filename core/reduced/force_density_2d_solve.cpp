@@ -219,10 +219,12 @@ ForceDensity2DResult ForceDensitySolver2D::run() {
   ForceDensity2DResult res;
   std::string issue;
   const auto t0 = std::chrono::steady_clock::now();
+  const double cpu0 = process_cpu_seconds();
   const bool ok = steady_solve(issue);
   res.status = ok ? Status::converged : Status::numerical_issue;
   res.message = issue;
   res.wall_seconds = seconds_since(t0);
+  res.cpu_seconds = process_cpu_seconds() - cpu0;
   res.mesh = coarse_;
   res.vx = reported(vx_, velocity_, full_v_, issue);
   res.vy = reported(vy_, velocity_, full_v_, issue);

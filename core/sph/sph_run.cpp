@@ -41,6 +41,7 @@ SphRunResult SphRunResult::from_json(const json& j) {
   r.time = j.at("time").get<double>();
   r.dt = j.at("dt").get<double>();
   r.wall_seconds = j.at("wall_seconds").get<double>();
+  r.cpu_seconds = j.value("cpu_seconds", 0.0);  // 0: an entry stored before CPU time was recorded
   r.last_relative_change = j.at("last_relative_change").get<double>();
   r.moving_particles = j.at("moving_particles").get<std::int64_t>();
   r.active_particles = j.at("active_particles").get<std::int64_t>();

@@ -109,8 +109,10 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     return out;
   }
 
-  // Rows stored before reference.file existed.
-  json upgraded_params(json stored) const override { return with_reference_file_defaults(std::move(stored)); }
+  // Rows stored before reference.file and timing.min_seconds existed.
+  json upgraded_params(json stored) const override {
+    return upgraded_reduced_params(with_reference_file_defaults(std::move(stored)));
+  }
 
   json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
     const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");

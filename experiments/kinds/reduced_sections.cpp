@@ -69,13 +69,15 @@ std::vector<double> transient_times(const json& transient, const Scene& scene) {
   return times;
 }
 
-json upgraded_transient_params(json params) {
-  if (params.is_object() && params.contains("transient") && params["transient"].is_object() &&
-      params["transient"].contains("t_star")) {
+json upgraded_reduced_params(json params) {
+  if (!params.is_object()) return params;
+  if (params.contains("transient") && params["transient"].is_object() && params["transient"].contains("t_star")) {
     json& t = params["transient"];
     t["t_over_tau"] = t["t_star"];
     t.erase("t_star");
   }
+  if (params.contains("timing") && params["timing"].is_object() && !params["timing"].contains("min_seconds"))
+    params["timing"]["min_seconds"] = 0.0;
   return params;
 }
 
@@ -84,14 +86,18 @@ ParamSchema reduced_timing_schema() { return timing_schema(); }
 RepeatedReducedRuns repeat_reduced_run(const std::function<ReducedRunSeconds()>& run_once, const TimingPolicy& policy) {
   RepeatedReducedRuns out;
   out.setup_min = out.loop_min = std::numeric_limits<double>::infinity();
+  std::vector<double> cpu;
   out.total = repeat_until_stable(
       [&] {
+        const double cpu0 = process_cpu_seconds();
         const ReducedRunSeconds s = run_once();
+        cpu.push_back(process_cpu_seconds() - cpu0);
         out.setup_min = std::min(out.setup_min, s.setup);
         out.loop_min = std::min(out.loop_min, s.loop);
         return s.setup + s.loop;
       },
       policy);
+  out.cpu = timing_stats(std::move(cpu));
   return out;
 }
 
@@ -99,7 +105,19 @@ void add_reduced_timing(json& cost, const RepeatedReducedRuns& runs, const json*
   cost["setup_seconds"] = runs.setup_min;
   cost["wall_seconds"] = runs.loop_min;
   cost["reduced_timing"] = runs.total.to_json();
+  cost["reduced_timing"]["cpu"] = {{"min_seconds", runs.cpu.min}, {"median_seconds", runs.cpu.median},
+                                   {"max_seconds", runs.cpu.max}, {"spread", runs.cpu.spread()},
+                                   {"range", runs.cpu.range()}};
   if (!direct_run) return;
+  const double direct_cpu = direct_run->value("cpu_seconds", 0.0);
+  if (direct_cpu > 0 && runs.cpu.min > 0) {
+    cost["direct_sph_cpu_seconds"] = direct_cpu;
+    cost["speed_up_cpu"] = direct_cpu / runs.cpu.min;
+    cost["speed_up_cpu_at_median"] = runs.cpu.median > 0 ? direct_cpu / runs.cpu.median : 0.0;
+  } else {
+    cost["speed_up_cpu"] = nullptr;
+    cost["speed_up_cpu_note"] = "none: the direct run's record has no CPU time (a store entry from before it was recorded)";
+  }
   const double direct_seconds = direct_run->at("wall_seconds").get<double>();
   cost["direct_sph_wall_seconds"] = direct_seconds;
   // Against the reduced model's whole cost, setup included (the direct run's setup is in its wall time).

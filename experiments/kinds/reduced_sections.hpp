@@ -24,7 +24,7 @@ void check_snapshot_times(const json& times, const std::string& path);
 
 // "transient", the reduced models' one vocabulary: snapshot times `t_over_tau`, t / τ with τ the scene's time
 // scale (Scene::time_scale()). The column model's earlier name `t_star` (t v_max / L, which is t / τ for its
-// scenes) is read as t_over_tau; rows stored under it still match their specs (upgraded_transient_params).
+// scenes) is read as t_over_tau; rows stored under it still match their specs (upgraded_reduced_params).
 ParamSchema transient_schema();
 // The key of `cell`'s transient section that holds its times as the cell wrote it ("t_star" or "t_over_tau"), for
 // error paths.
@@ -34,8 +34,9 @@ std::string transient_times_key(const json& cell);
 json resolve_transient(const json& cell, const std::string& path);
 // The snapshot model times t = (t / τ) τ of a resolved transient section.
 std::vector<double> transient_times(const json& transient, const Scene& scene);
-// A stored row's resolved parameters as this version resolves them: transient.t_star renamed t_over_tau.
-json upgraded_transient_params(json params);
+// A stored row's resolved parameters as this version resolves them (the reduced kinds' upgraded_params):
+// transient.t_star renamed t_over_tau; timing.min_seconds, added since, set to 0, as those rows were timed.
+json upgraded_reduced_params(json params);
 
 // "timing": how the reduced run is repeated (core/base/repeated_timing.hpp).
 ParamSchema reduced_timing_schema();
@@ -46,9 +47,9 @@ struct ReducedRunSeconds {
   double setup = 0.0, loop = 0.0;
 };
 // The reduced run repeated under `policy`: the statistics of the whole run (setup + loop), and the fastest
-// setup and loop seen.
+// setup and loop seen; `cpu`, the statistics of the same runs' process CPU time (process_cpu_seconds).
 struct RepeatedReducedRuns {
-  TimingStats total;
+  TimingStats total, cpu;
   double setup_min = 0.0, loop_min = 0.0;
 };
 RepeatedReducedRuns repeat_reduced_run(const std::function<ReducedRunSeconds()>& run_once, const TimingPolicy& policy);
@@ -57,7 +58,10 @@ RepeatedReducedRuns repeat_reduced_run(const std::function<ReducedRunSeconds()>&
 // reduced_timing (the statistics of setup + loop); with the direct run's record (`direct_run`, its
 // "wall_seconds" and the store's "computed_by"): direct_sph_wall_seconds, speed_up (the direct time over the
 // fastest reduced run), speed_up_at_median, and direct_sph_timing (the commit, host and date that timed the
-// direct run and whether they are this run's).
+// direct run and whether they are this run's). The same in CPU time (core-seconds, which a loaded machine's
+// preemption does not inflate): reduced_timing.cpu, direct_sph_cpu_seconds and speed_up_cpu (the direct run's CPU
+// time over the reduced runs' least), null with speed_up_cpu_note where the direct record has no CPU time (a store
+// entry from before it was recorded).
 void add_reduced_timing(json& cost, const RepeatedReducedRuns& runs, const json* direct_run);
 
 // The two-pass rule's choice (pass 2's deconvolver): a deconvolver configured as `configured` (a resolved one with a

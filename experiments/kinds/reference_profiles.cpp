@@ -164,6 +164,8 @@ void check_reference_file(const json& cell, const json& out, const Scene& scene,
 void mark_untimed_reference(json& row) {
   row["cost"]["speed_up"] = nullptr;
   row["cost"]["speed_up_note"] = "none: the reference was read from a file (reference.file), no direct run was timed";
+  row["cost"]["speed_up_cpu"] = nullptr;
+  row["cost"]["speed_up_cpu_note"] = row["cost"]["speed_up_note"];
 }
 
 }  // namespace closurelab

@@ -72,4 +72,21 @@ TEST(RepeatedTiming, SchemaDefaultsAreThePolicyDefaults) {
   EXPECT_EQ(p.max_repeats, d.max_repeats);
   EXPECT_EQ(p.budget_seconds, d.budget_seconds);
   EXPECT_EQ(p.stability, d.stability);
+  EXPECT_EQ(p.min_seconds, d.min_seconds);
+}
+
+TEST(RepeatedTiming, AFloorOfTimedWorkKeepsEqualRunsGoingUntilItIsSpent) {
+  TimingPolicy p;
+  p.min_seconds = 1.0;
+  // Runs of 0.125 s agree from the start; the floor holds them to 1 s of timed work (run 8), then stable.
+  ScriptedRuns equal{std::vector<double>(20, 0.125)};
+  const TimingStats s = repeat_until_stable(std::ref(equal), p);
+  EXPECT_EQ(s.stopped_by, "stable");
+  EXPECT_EQ(s.repeats(), 8);
+  // The budget still ends it first when it is the smaller.
+  p.budget_seconds = 0.75;
+  ScriptedRuns again{std::vector<double>(20, 0.125)};
+  const TimingStats b = repeat_until_stable(std::ref(again), p);
+  EXPECT_EQ(b.stopped_by, "budget");
+  EXPECT_EQ(b.repeats(), 6);
 }

@@ -3,9 +3,10 @@
 
 Usage: python3 experiments/near_wall/rules_table.py TABLE.json [TABLE.json ...] > results/near_wall/rules.md
 
-Per table (one scene) and row: the rule (or the fixed alpha), the integrator, the alpha the rule chose (the two-pass
-rule's single choice under backward Euler; with explicit steps the range chosen over the run's solves), the status,
-and the max error over every coarse node against the averaged direct SPH, with the paper's peak metric.
+Per table (one scene; where the table has a scene.case axis, its rows grouped by case, the label naming it) and
+row: the rule (or the fixed alpha), the integrator, the alpha the rule chose (the two-pass rule's single choice under
+backward Euler; with explicit steps the range chosen over the run's solves), the status, and the max error over every
+coarse node against the averaged direct SPH, with the paper's peak metric.
 """
 import json
 import sys
@@ -24,11 +25,16 @@ def main():
         rows = table["rows"]
         scene = rows[0]["params"]["scene"]
         commits = sorted({r["provenance"]["git_commit"][:12] for r in rows})
-        ref = rows[0].get("direct_sph", {}).get("reference_store", {}).get("computed_by", {}).get("git_commit", "?")
-        out += ["## %s (%s, n_y = %s)" % (table.get("name", path), scene["name"], scene.get("n_y")), "",
+        ref = ", ".join(sorted({r.get("direct_sph", {}).get("reference_store", {}).get("computed_by", {})
+                                .get("git_commit", "?")[:12] for r in rows}))
+        cases = sorted({r["params"]["scene"]["case"] for r in rows if "case" in r["params"]["scene"]})
+        where = "n_y = %s" % scene.get("n_y") + (", cases %s" % ", ".join(cases) if cases else "")
+        out += ["## %s (%s, %s)" % (table.get("name", path), scene["name"], where), "",
                 "Rows computed at %s; the direct SPH reference computed at %s (reference store)." %
-                (", ".join(commits), ref[:12]), "",
+                (", ".join(commits), ref), "",
                 "| cell | status | alpha used | max error, all nodes | peak |", "|---|---|---|---|---|"]
+        if cases:  # one scene per case: its rows together, in the spec's order
+            rows = sorted(rows, key=lambda r: r["params"]["scene"].get("case", ""))
         for r in rows:
             rm = r.get("reduced_model", {})
             d = r["params"]["closure"]["deconvolver"]

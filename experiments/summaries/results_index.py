@@ -35,6 +35,11 @@ QUESTIONS = {
     "error_budget/two_phase_case3": "Which ingredient limits the reduced model (oracle substitution), two-phase case 3?",
     "near_wall/fig2": "With the near-wall formulation, does the error stay small and fall as eta' falls (Fig. 2's sweep)?",
     "near_wall/two_phase": "With the near-wall formulation, how close is the two-phase reduced model (cases 1, 2)?",
+    "near_wall/fig2_192": "Fig. 2's sweep with the near-wall formulation at the paper's resolution (n_y = 192): does the error stay small?",
+    "near_wall/two_phase_192": "With the near-wall formulation at the paper's resolution (n_y = 192), how close is the two-phase reduced model (cases 1, 2)?",
+    "near_wall/fig2_192_steady1e-6": "As near_wall/fig2_192, the direct SPH run to a ten times tighter steady test: does the error depend on where the reference stopped?",
+    "near_wall/two_phase_192_steady1e-6": "As near_wall/two_phase_192, the direct SPH run to a ten times tighter steady test: does the error depend on where the reference stopped?",
+    "near_wall/tikhonov_rules_two_phase": "Which alpha does each rule choose for the near-wall closure on the two-phase cases 1-3 (n_y = 192), and at what error?",
 }
 
 

@@ -31,8 +31,8 @@ TERMS = [
     ("wall-surface nodes", "the imposed (5.6) wall-surface value against the averaged direct SPH there"),
     ("rest of the wall band", "the band's other nodes held: the error left there with the three oracles on (the "
                               "finite-difference divergence's), and its effect inside"),
-    ("remainder", "what is left at the interior nodes (outside the wall band) with every oracle on: the finite-difference "
-                  "divergence's error there"),
+    ("remainder", "what is left at the interior nodes (outside the wall band) with every oracle on: the "
+                  "finite-difference divergence's error there"),
 ]
 PAPER_SETTINGS = {"balance": "stress_divergence", "time_integration": "explicit", "wall_node_value": "imposed"}
 

@@ -45,6 +45,9 @@ ParamSchema cylinder_lattice_schema() {
   };
   for (const ParamSpec& p : sph_discretization_params())
     if (p.name != "sound_speed_factor") schema.push_back(p);
+  // The solid's boundary model: zero_velocity (5.3), or Morris et al.'s (1997) ghost velocities with distances to
+  // the cylinder's nominal surface (rows stored before it: zero_velocity, upgraded_scene_params).
+  for (const ParamSpec& p : wall_model_params()) schema.push_back(p);
   return schema;
 }
 
@@ -88,6 +91,10 @@ std::unique_ptr<Scene> make_cylinder_lattice(const json& p) {
   }
   const double cx = 0.5 * l, cy = 0.5 * l, a2 = a * a;
   s->solid_at = [cx, cy, a2](double x, double y) { return (x - cx) * (x - cx) + (y - cy) * (y - cy) < a2; };
+  s->wall_model = parse_name<WallModel>(p.at("wall_model").get<std::string>(), "/wall_model");
+  s->ghost_beta_max = p.at("ghost_beta_max").get<double>();
+  if (s->wall_model == WallModel::ghost_velocity)
+    s->solid_depth = [cx, cy, a](double x, double y) { return a - std::hypot(x - cx, y - cy); };
   const double g = p.at("g").get<double>(), rho = s->rho0, mu = s->phase_viscosity[0], nu = mu / rho;
   s->force_x = [g](double) { return g; };
   s->body_force = [g](double, double) { return Vec2(g, 0.0); };

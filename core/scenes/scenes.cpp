@@ -89,6 +89,12 @@ ParamSchema wall_model_params() {
   };
 }
 
+json upgraded_scene_params(json scene) {
+  if (scene.is_object() && scene.value("name", "") == "cylinder-lattice" && !scene.contains("wall_model"))
+    for (const ParamSpec& p : wall_model_params()) scene[p.name] = p.default_value;
+  return scene;
+}
+
 void read_sph_discretization(Scene& s, const json& p, const std::string& path) {
   s.smoothing_type = parse_name<SmoothingKernel::Type>(p.at("smoothing_kernel").get<std::string>(), path + "/smoothing_kernel");
   s.h = p.at("h_over_dx").get<double>() * s.dx;

@@ -44,7 +44,10 @@ struct Scene {
   // particles. Empty: none. The ghost-velocity wall model measures distances to the walls in y only, so scenes
   // with solid_at use zero-velocity solids.
   std::function<bool(double x, double y)> solid_at;
-  // The wall model applies to the walls in y (has_walls) only.
+  // Under the ghost-velocity model, how deep a point lies inside a solid of solid_at, to its nominal surface
+  // (negative in the fluid): the d_wall and −d_fluid of a fluid–solid pair. Empty: the model's distances are to the
+  // walls in y, and the solids of solid_at are held at zero velocity whatever the model.
+  std::function<double(double x, double y)> solid_depth;
   WallModel wall_model = WallModel::zero_velocity;
   double ghost_beta_max = 0.0;
 
@@ -170,6 +173,9 @@ struct Scene {
 
 // Scene parameters shared by the scene schemas: the wall model (walled scenes) and the SPH discretization.
 ParamSchema wall_model_params();
+// A stored scene section from before a parameter was added, with the value that reproduces the earlier behaviour
+// (ExperimentKind::upgraded_params): cylinder-lattice's wall_model and ghost_beta_max (solids at zero velocity).
+json upgraded_scene_params(json scene);
 ParamSchema sph_discretization_params();  // smoothing_kernel, h_over_dx, sound_speed_factor
 // Reads smoothing_kernel and h_over_dx of a resolved scene section (path: its JSON path) into a scene whose dx
 // is set.

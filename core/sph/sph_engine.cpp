@@ -159,9 +159,15 @@ Vec2 SphEngine::relative_velocity(std::int32_t a, std::int32_t b) const {
   // Ghost velocity: the wall particle moves with −(d_wall / d_fluid) v_fluid, so that the velocity
   // continued across the wall surface vanishes on it.
   const int f = fa ? b : a, w = fa ? a : b;
-  const bool lower = ps_.y[w] < scene_.wall_lo;
-  const double d_wall = lower ? scene_.wall_lo - ps_.y[w] : ps_.y[w] - scene_.wall_hi;
-  const double d_fluid = std::max(lower ? ps_.y[f] - scene_.wall_lo : scene_.wall_hi - ps_.y[f], 1e-3 * scene_.dx);
+  double d_wall, d_fluid;
+  if (scene_.solid_depth && !scene_.is_wall(ps_.y[w])) {  // a solid given by position (scene.hpp)
+    d_wall = scene_.solid_depth(ps_.x[w], ps_.y[w]);
+    d_fluid = std::max(-scene_.solid_depth(ps_.x[f], ps_.y[f]), 1e-3 * scene_.dx);
+  } else {
+    const bool lower = ps_.y[w] < scene_.wall_lo;
+    d_wall = lower ? scene_.wall_lo - ps_.y[w] : ps_.y[w] - scene_.wall_hi;
+    d_fluid = std::max(lower ? ps_.y[f] - scene_.wall_lo : scene_.wall_hi - ps_.y[f], 1e-3 * scene_.dx);
+  }
   const double beta = std::min(scene_.ghost_beta_max, 1.0 + d_wall / d_fluid);
   const double sign = fa ? -1.0 : 1.0;
   return {sign * beta * ps_.vx[f], sign * beta * ps_.vy[f]};

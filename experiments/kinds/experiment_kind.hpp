@@ -44,8 +44,9 @@ class ExperimentKind {
   // a factor missing from the cell counts as 1.
   virtual double expected_cost(const json& resolved) const;
   // A stored row's resolved parameters as this version resolves them, so that cells computed before a parameter
-  // was renamed still match their specs (resume and merge compare them; results_table.hpp). Default: as stored.
-  virtual json upgraded_params(json stored) const { return stored; }
+  // was renamed or added still match their specs (resume and merge compare them; results_table.hpp). Default: the
+  // scene section's (upgraded_scene_params, core/sph/scene.hpp).
+  virtual json upgraded_params(json stored) const;
 };
 
 // The built-in experiment kinds (experiments/kinds/experiment_kinds.cpp lists them explicitly).

@@ -26,6 +26,11 @@ const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds() {
   return kinds;
 }
 
+json ExperimentKind::upgraded_params(json stored) const {
+  if (stored.is_object() && stored.contains("scene")) stored["scene"] = upgraded_scene_params(stored["scene"]);
+  return stored;
+}
+
 double ExperimentKind::expected_cost(const json& resolved) const {
   auto positive = [](const json& obj, const char* key) {
     return obj.is_object() && obj.contains(key) && obj[key].is_number() && obj[key].get<double>() > 0 ? obj[key].get<double>() : 1.0;

@@ -71,6 +71,7 @@ std::vector<double> transient_times(const json& transient, const Scene& scene) {
 
 json upgraded_reduced_params(json params) {
   if (!params.is_object()) return params;
+  if (params.contains("scene")) params["scene"] = upgraded_scene_params(params["scene"]);
   if (params.contains("transient") && params["transient"].is_object() && params["transient"].contains("t_star")) {
     json& t = params["transient"];
     t["t_over_tau"] = t["t_star"];

@@ -10,7 +10,8 @@ relative difference to the Stokes reference the script holds (0.032948, closurel
 c = pi 0.2^2), and closurelab's direct SPH at the same n or, where it has none, the nearest n. Below the table:
 the observed order against the reference between the runs at fx-factor 1 whose nx differ by 1.5 or more,
 log(e(n1)/e(n2)) / log(n2/n1) (only where both errors have the same sign; marked not resolved where the finer
-error is within the half-range of k over its last window), for PySPH and for closurelab.
+error is within the half-range of k over its last window), for PySPH and for closurelab; and k at another fx
+factor against fx factor 1 at the same nx.
 Only reads the files; every number printed is one of theirs or computed from them here.
 """
 import json
@@ -57,6 +58,12 @@ def main():
                 a["nx"], b["nx"], math.log(ea / eb) / math.log(b["nx"] / a["nx"]),
                 " (not resolved: the finer error, %+.4f, is within its last window's half-range %.4f)" % (eb, spread)
                 if abs(eb) <= spread else ""))
+    for r in runs:  # the linearity check: k at another body force against fx-factor 1 at the same nx
+        b = [q for q in base if q["nx"] == r["nx"]]
+        if b and r not in base:
+            out.append("- PySPH, nx = %d: k at fx factor %g against fx factor 1: %+.4f (Re %.3g against %.3g)" % (
+                r["nx"], r["fx"] / 1.5e-7, r["k_over_L2"] / b[0]["k_over_L2"] - 1.0, r["reynolds_a_mean"],
+                b[0]["reynolds_a_mean"]))
     ns = sorted(drows)
     for a, b in zip(ns, ns[1:]):
         ea, eb = (drows[m]["errors"]["permeability"]["relative_difference"] for m in (a, b))

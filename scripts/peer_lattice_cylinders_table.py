@@ -4,7 +4,8 @@ beside closurelab's direct SPH at a = 0.2 L from results/cylinders/direct/direct
 
 Usage: python3 scripts/peer_lattice_cylinders_table.py results/peer/cylinders/nx*.json > results/peer/cylinders/table.md
 
-Per run: the lattice nx, the body-force factor, Re and Mach, the run (steps, model time, steady or stopped at tf,
+Per run: the lattice nx, the solid's area on the lattice (its particles over nx^2, against the nominal solid
+fraction c = pi 0.2^2), the body-force factor, Re and Mach, the run (steps, model time, steady or stopped at tf,
 wall time), k/L^2 (the mean over the script's last window, with that window's least and largest value) and its
 relative difference to the Stokes reference the script holds (0.032948, closurelab's boundary-collocation solve at
 c = pi 0.2^2), and closurelab's direct SPH at the same n or, where it has none, the nearest n. Below the table:
@@ -35,15 +36,15 @@ def main():
            "Reference k/L^2 = %g (the script's; closurelab's table: %.6f). PySPH %s." % (
                ref, next(iter(drows.values()))["errors"]["permeability"]["reference_over_l2"],
                ", ".join(sorted({r["pysph"] for r in runs}))), "",
-           "| nx | fx factor | Re | Mach (max) | steps | model time | steady | PySPH k/L^2 (last window: min, max) | "
+           "| nx | solid particles / nx^2 (c = %.4f) | fx factor | Re |" % (math.pi * 0.2 ** 2) + " Mach (max) | steps | model time | steady | PySPH k/L^2 (last window: min, max) | "
            "PySPH k / k_ref - 1 (last window's half-range / k_ref) | closurelab n | closurelab k/L^2 | closurelab k / k_ref - 1 | PySPH wall s |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in runs:
         n = min(drows, key=lambda m: (abs(m - r["nx"]), m))
         d = drows[n]["errors"]["permeability"]
         lo, hi = r["k_over_L2_last_window_min_max"]
-        out.append("| %d | %g | %.3g | %.3g | %d | %.0f | %s | %.6f (%.6f, %.6f) | %+.4f (%.4f) | %d%s | %.6f | %+.4f | %.0f |" % (
-            r["nx"], r["fx"] / 1.5e-7, r["reynolds_a_mean"], r["mach_max"], r["steps"], r["t_end"],
+        out.append("| %d | %.4f | %g | %.3g | %.3g | %d | %.0f | %s | %.6f (%.6f, %.6f) | %+.4f (%.4f) | %d%s | %.6f | %+.4f | %.0f |" % (
+            r["nx"], r["particles"]["solid"] / r["nx"] ** 2, r["fx"] / 1.5e-7, r["reynolds_a_mean"], r["mach_max"], r["steps"], r["t_end"],
             "yes" if r["steady"] else "no (tf)", r["k_over_L2"], lo, hi, r["k_vs_reference"], 0.5 * (hi - lo) / ref, n,
             "" if n == r["nx"] else " (nearest)", d["over_l2"], d["relative_difference"], r["wall_seconds"]))
     out.append("")

@@ -9,7 +9,7 @@ fraction c = pi 0.2^2), the body-force factor, Re and Mach, the run (steps, mode
 wall time), k/L^2 (the mean over the script's last window, with that window's least and largest value) and its
 relative difference to the Stokes reference the script holds (0.032948, closurelab's boundary-collocation solve at
 c = pi 0.2^2), and closurelab's direct SPH at the same n or, where it has none, the nearest n. Below the table:
-the observed order against the reference between the runs at fx-factor 1 whose nx differ by 1.5 or more,
+the observed order against the reference between the runs at the same fx factor whose nx differ by 1.5 or more,
 log(e(n1)/e(n2)) / log(n2/n1) (only where both errors have the same sign; marked not resolved where the finer
 error is within the half-range of k over its last window), for PySPH and for closurelab; and k at another fx
 factor against fx factor 1 at the same nx.
@@ -49,16 +49,19 @@ def main():
             "" if n == r["nx"] else " (nearest)", d["over_l2"], d["relative_difference"], r["wall_seconds"]))
     out.append("")
     base = [r for r in runs if abs(r["fx"] / 1.5e-7 - 1.0) < 1e-12]
-    pairs = [(a, b) for i, a in enumerate(base) for b in base[i + 1:] if b["nx"] >= 1.5 * a["nx"]]
-    for a, b in pairs:
-        ea, eb = a["k_vs_reference"], b["k_vs_reference"]
-        if ea * eb > 0:
-            lo, hi = b["k_over_L2_last_window_min_max"]
-            spread = 0.5 * (hi - lo) / ref
-            out.append("- PySPH, order against the reference, nx = %d -> %d: %.2f%s" % (
-                a["nx"], b["nx"], math.log(ea / eb) / math.log(b["nx"] / a["nx"]),
-                " (not resolved: the finer error, %+.4f, is within its last window's half-range %.4f)" % (eb, spread)
-                if abs(eb) <= spread else ""))
+    factors = sorted({r["fx"] / 1.5e-7 for r in runs}, reverse=True)
+    for f in factors:
+        group = [r for r in runs if abs(r["fx"] / 1.5e-7 - f) < 1e-12 * f]
+        pairs = [(a, b) for i, a in enumerate(group) for b in group[i + 1:] if b["nx"] >= 1.5 * a["nx"]]
+        for a, b in pairs:
+            ea, eb = a["k_vs_reference"], b["k_vs_reference"]
+            if ea * eb > 0:
+                lo, hi = b["k_over_L2_last_window_min_max"]
+                spread = 0.5 * (hi - lo) / ref
+                out.append("- PySPH, fx factor %g, order against the reference, nx = %d -> %d: %.2f%s" % (
+                    f, a["nx"], b["nx"], math.log(ea / eb) / math.log(b["nx"] / a["nx"]),
+                    " (not resolved: the finer error, %+.4f, is within its last window's half-range %.4f)" % (
+                        eb, spread) if abs(eb) <= spread else ""))
     for r in runs:  # the linearity check: k at another body force against fx-factor 1 at the same nx
         b = [q for q in base if q["nx"] == r["nx"]]
         if b and r not in base:

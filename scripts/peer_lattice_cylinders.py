@@ -4,7 +4,7 @@ cylinder-lattice permeability (results/cylinders/direct): an independent scheme,
 permeability against the Darcy permeability, not particle against particle.
 
   /usr/bin/python3 scripts/peer_lattice_cylinders.py --nx 48 [--tf 10000] [--fx-factor 1] [--window-over-tau 1.25]
-        [--tol 1e-4] [--every 10] [--out FILE.json] [-- PYSPH_OPTIONS ...]
+        [--tol 1e-4] [--every 10] [--out FILE.json] [--save-particles FILE.npz] [-- PYSPH_OPTIONS ...]
 
 The example (unchanged, imported; only its module constants that follow from the resolution are recomputed):
   - a square cell of side L = 0.1, periodic in x and y, one cylinder of radius a = 0.02 = 0.2 L at its centre
@@ -27,6 +27,8 @@ permeability), or at --tf; the result is the mean over the last window, with its
 output (--out, JSON) holds the parameters, the history of k, the result, k / L^2 against the square array's Stokes
 permeability (closurelab's boundary-collocation solve, core/scenes/square_array_stokes.cpp: k/L^2 = 0.032948 at
 c = 0.1257; Sangani & Acrivos 1982) and the wall time.
+--save-particles writes the final state's local particles (numpy .npz: fluid_x, fluid_y, fluid_u, fluid_v, fluid_m
+and solid_x, ... alike; SI units of the example) for scripts/peer_lattice_cylinders_field.py.
 Arguments after "--" go to PySPH's Application (e.g. --openmp); output files are disabled unless given there.
 """
 
@@ -106,6 +108,7 @@ def main():
     ap.add_argument("--tol", type=float, default=1e-4)
     ap.add_argument("--every", type=int, default=10)
     ap.add_argument("--out", default="")
+    ap.add_argument("--save-particles", default="", help="the final local particles, .npz")
     a = ap.parse_args(argv)
 
     configure(a.nx, a.fx_factor, a.tf)
@@ -150,6 +153,14 @@ def main():
           % (a.nx, result["steps"], t_end, "steady" if result["steady"] else "NOT steady: stopped at tf", k_l2,
              100 * result["k_vs_reference"], K_REF_OVER_L2, min(window), max(window), result["reynolds_a_mean"],
              result["mach_max"], seconds))
+    if a.save_particles:
+        import numpy as np
+        arrays = {}
+        for pa in app.particles:
+            local = pa.tag == 0
+            for prop in ("x", "y", "u", "v", "m"):
+                arrays["%s_%s" % (pa.name, prop)] = np.asarray(getattr(pa, prop))[local].astype(np.float64)
+        np.savez_compressed(a.save_particles, **arrays)
     if a.out:
         with open(a.out, "w") as f:
             json.dump(result, f, indent=1)

@@ -40,9 +40,9 @@ struct Scene {
   bool has_walls = false;
   double wall_lo = 0.0, wall_hi = 0.0;  // l1, l2 of (5.15)
   // Solids besides the walls in y (a boundary component given by position, e.g. the cylinders of a porous
-  // medium): the lattice particles where solid_at(x, y) holds are held fixed at zero velocity (5.3) like wall
-  // particles. Empty: none. The ghost-velocity wall model measures distances to the walls in y only, so scenes
-  // with solid_at use zero-velocity solids.
+  // medium): the lattice particles where solid_at(x, y) holds are held fixed like wall particles, at zero velocity
+  // (5.3) or, under the ghost-velocity model with solid_depth set, carrying ghost velocities in fluid–solid pairs.
+  // Empty: none.
   std::function<bool(double x, double y)> solid_at;
   // Under the ghost-velocity model, how deep a point lies inside a solid of solid_at, to its nominal surface
   // (negative in the fluid): the d_wall and −d_fluid of a fluid–solid pair. Empty: the model's distances are to the

@@ -94,9 +94,9 @@ void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, c
   if (std::abs(scene.box.lx / scene.nx - scene.dx) > 1e-12 * scene.dx ||
       std::abs(scene.box.ly / scene.ny - scene.dx) > 1e-12 * scene.dx)
     throw ConfigError("/scene", "the 2D force-density model needs the square lattice to fill the periodic box");
-  if (scene.has_walls && scene.wall_model != WallModel::zero_velocity)
+  if ((scene.has_walls || scene.solid_at) && scene.wall_model != WallModel::zero_velocity)
     throw ConfigError("/scene/wall_model", "the 2D force-density model holds the solids at their known zero velocity; "
-                                           "use zero_velocity walls");
+                                           "use zero_velocity walls and solids");
   // The pair forces are linearised about the lattice's uniform number density: every solid particle a fluid particle
   // reaches must itself see a full stencil, so a wall must be two SPH supports thick.
   const double support = scene.smoothing_kernel().support();

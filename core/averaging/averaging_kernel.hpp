@@ -18,6 +18,8 @@ class AveragingKernel {
   virtual double eta() const = 0;
   // The 1D factor φ with ψ(x, y) = φ(x) φ(y); ∫ φ = 1.
   virtual double factor(double t) const = 0;
+  // Its derivative φ'(t) (the convective flux's divergence, core/reduced/force_density_2d.hpp).
+  virtual double factor_derivative(double t) const = 0;
   // Fourier symbol of the 1D factor, ∫ φ(t) e^{-2πiξt} dt (real, the factor is even).
   virtual double factor_symbol(double xi) const = 0;
   // Radius beyond which φ is zero or negligible against its peak (below ~1e-15 of it: the Gaussian's 6η gives
@@ -41,6 +43,17 @@ inline double factor_over_images(const AveragingKernel& k, const UniformMesh1D& 
   const int images = static_cast<int>(std::ceil(k.support_radius() / p)) + 1;
   double v = 0;
   for (int q = -images; q <= images; ++q) v += k.factor(d + q * p);
+  return v;
+}
+
+// φ'(d) summed over the periodic images, as factor_over_images.
+inline double factor_derivative_over_images(const AveragingKernel& k, const UniformMesh1D& axis, double d) {
+  if (!axis.periodic) return k.factor_derivative(d);
+  const double p = axis.period;
+  d -= p * std::round(d / p);
+  const int images = static_cast<int>(std::ceil(k.support_radius() / p)) + 1;
+  double v = 0;
+  for (int q = -images; q <= images; ++q) v += k.factor_derivative(d + q * p);
   return v;
 }
 

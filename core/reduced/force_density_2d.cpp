@@ -195,6 +195,7 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
   for (Map k : {op_n, cont_x, cont_y}) maps[k] = inv_psi.asDiagonal() * maps[k];
   body_x_ = body_x_.cwiseProduct(inv_rho);
   body_y_ = body_y_.cwiseProduct(inv_rho);
+  if (opt_.convective_stress) assemble_convective(scene, kernel, lattice, rho_bar);
   mass_weight_ = rho_bar * coarse_.cell_area() / (scene.rho0 * scene.box.lx * scene.box.ly);
   fluid_area_per_particle_ = dx * dx / (scene.box.lx * scene.box.ly);
   // Free nodes: a fluid mass fraction of at least hold_fraction; the others are held and reported as the average

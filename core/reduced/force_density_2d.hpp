@@ -12,9 +12,14 @@
 // particles at their known zero velocity:
 //   f_a = Σ_b μ_ab F_ab (V_a − V_b) / n0²  −  β Σ_b (δn_a + δn_b) F_ab q_ab,   β = dP/dn / n0² − 2 P0 / n0³,
 //   ṅ_a = Σ_b F_ab q_ab · (V_a − V_b),      F = w'(r)/r, q_ab = q_a − q_b.
-// Left out because the scene does not need it (DESIGN.md §1): the convective stress (2.12) (O(Re)), and the
-// background pressure's force on the displaced lattice (−2P0/n0² δ(F q), which grows with the displacement, not
-// with δn: 2P0/(c² ρ0) = 0.4 % of the pressure response at the cylinder scene's P0 = 0.002 ρ0 c²).
+// Left out unless asked (solver.convective_stress; DESIGN.md §1: a Stokes scene does not need it): the convective
+// flux. With it, the momentum rate gains the exact averaged transport of the particles' momentum,
+//   ρ̄ ∂_t v̄ ∋ Σ_{a fluid} m V_a (V_a · ∇_q ψ(x − q_a)) = −∇ · Σ_a m V_a V_a ψ(x − q_a)   (ρ̄ v̄v̄ − T_conv, (2.12)),
+// with V_a the reconstructed particle velocities at the lattice sites: quadratic in the state, so the steady state
+// is reached by Newton's method from the Stokes solution (the Jacobian exact: the closure is linear). The density's
+// transport Σ δn_a V_a · ∇_q ψ stays out (δn V against n0 ∇·V: δn/n0 ≤ 4e-2 at the cylinder scene's Re ~ 1).
+// Always left out: the background pressure's force on the displaced lattice (−2P0/n0² δ(F q), which grows with the
+// displacement, not with δn: 2P0/(c² ρ0) = 0.4 % of the pressure response at the cylinder scene's P0 = 0.002 ρ0 c²).
 //
 // Closure: the particle velocities V and density deviations δn are reconstructed from v̄ and n̄ by two registered
 // Deconvolvers on a reconstruction mesh of spacing Δ / reconstruction_refinement, interpolated bilinearly to the
@@ -28,6 +33,7 @@
 // diverge with a weakly regularised closure, and at α = 1e-2 had not settled to 1e-9 by t = 20 on the test lattice:
 // transients are left to the cost issue's library integrator.)
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <array>
 #include <functional>
 #include <string_view>
@@ -64,6 +70,11 @@ struct ForceDensity2DOptions {
   double hold_fraction = 1e-2;
   HeldNodeValue held_node_value = HeldNodeValue::imposed;
   double noise_level = 0.0;           // δ handed to the deconvolvers' parameter rules (a fixed one ignores it)
+  // The convective flux (above): for a flow whose Reynolds number is not small; not for an x-invariant scene (its
+  // flux has no divergence). Newton stops when its step is below newton_tolerance of the state (max norms).
+  bool convective_stress = false;
+  double newton_tolerance = 1e-10;
+  int newton_max_iterations = 20;
 };
 
 ParamSchema force_density_2d_schema();
@@ -89,6 +100,9 @@ struct ForceDensity2DResult : ClosureRunResult {
   double setup_seconds = 0.0;         // assembling the maps and the deconvolvers' setup
   double assembly_seconds = 0.0;      // of which assembling the maps
   double probe_seconds = 0.0;         // probing the closure on unit data
+  long newton_iterations = 0;         // with the convective flux: Newton's steps from the Stokes solution
+  double newton_seconds = 0.0;        // and their time (within the run's)
+  double newton_last_step = 0.0;      // the last step's size relative to the state (max norms)
 };
 
 class ForceDensitySolver2D {
@@ -104,6 +118,10 @@ class ForceDensitySolver2D {
   // reconstruction mesh: the assembled affine maps, for tests.
   void rates_from_reconstruction(const Eigen::VectorXd& rx, const Eigen::VectorXd& ry, const Eigen::VectorXd& rn,
                                  Eigen::VectorXd& ax, Eigen::VectorXd& ay, Eigen::VectorXd& an) const;
+  // The convective flux's rates on every coarse node (−∇·Σ m V V ψ / ρ̄, both components) from a velocity
+  // reconstruction; zero without solver.convective_stress.
+  void convective_rates(const Eigen::VectorXd& rx, const Eigen::VectorXd& ry, Eigen::VectorXd& qx,
+                        Eigen::VectorXd& qy) const;
   // Sets the state from fields on every coarse node (the held nodes' values are ignored).
   void set_state(const Eigen::VectorXd& vx, const Eigen::VectorXd& vy, const Eigen::VectorXd& density);
 
@@ -133,6 +151,15 @@ class ForceDensitySolver2D {
   // Every column of `data` at once (Deconvolver::solve_columns), the velocity's on every reconstruction node.
   bool deconvolve_columns(Deconvolver& d, const Eigen::MatrixXd& data, Eigen::MatrixXd& x, std::string& issue);
   bool steady_solve(std::string& issue);
+  // The convective flux's maps (force_density_2d_convective.cpp): assembled in the constructor when asked, and
+  // Newton's iteration on the bordered steady system `big` z = rhs plus the flux, from z (the Stokes solution);
+  // xv, x0v: the velocity closure's response to unit data and to zero data.
+  void assemble_convective(const Scene& scene, const AveragingKernel& kernel, const ParticleSystem& lattice,
+                           const Eigen::VectorXd& rho_bar);
+  bool newton_convective(const Eigen::MatrixXd& big, const Eigen::VectorXd& rhs, const Eigen::MatrixXd& xv,
+                         const Eigen::VectorXd& x0v, bool minimum_norm, Eigen::VectorXd& z, std::string& issue);
+  // Σ_a D(n, a) w_a P(a, ·): a convective map weighted by a per-particle field, carried to the reconstruction nodes.
+  Eigen::MatrixXd to_reconstruction(const Eigen::SparseMatrix<double, Eigen::RowMajor>& d, const Eigen::VectorXd& w) const;
   double superficial_velocity(std::string& issue);
   Eigen::VectorXd on_free(const Eigen::VectorXd& full) const;  // the free nodes' entries of a coarse field
   // A state on the free nodes as reported on every node: held nodes by the average (`full`: every node's row of
@@ -164,6 +191,12 @@ class ForceDensitySolver2D {
   long matvecs_ = 0;
   double deconv_seconds_ = 0.0, setup_seconds_ = 0.0, assembly_seconds_ = 0.0, probe_seconds_ = 0.0;
   DeconvolutionIssues deconvolution_issues_;
+  // The convective flux: D_b(n, k) = m ∂_{q_b} ψ(x_n − q_a) / ρ̄_n over the fluid particles a = fluid_[k], and their
+  // bilinear interpolation from the reconstruction mesh (rows: fluid particles).
+  std::vector<int> fluid_;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> conv_dx_, conv_dy_, fluid_interp_;
+  long newton_iterations_ = 0;
+  double newton_seconds_ = 0.0, newton_last_step_ = 0.0;
 };
 
 // The closure must be linear in its data when the steady system is probed: not cg/cgls (ConfigError at

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -114,5 +115,10 @@ Eigen::SparseMatrix<double> link_differences(const TensorMesh2D& mesh, const std
   l.setFromTriplets(t.begin(), t.end());
   return l;
 }
+
+// big z = rhs by LU of the equilibrated system (force_density_2d_solve.cpp): false, the reason in `issue`, when it is
+// singular to working precision; with `minimum_norm`, the minimum-norm solution of a rank-deficient system.
+bool equilibrated_steady_solve(Eigen::MatrixXd big, const Eigen::VectorXd& rhs, Eigen::VectorXd& z, std::string& issue,
+                               bool minimum_norm);
 
 }  // namespace closurelab::force_density_detail

@@ -24,7 +24,15 @@ ParamSchema force_density_2d_schema() {
                        0.0, 0.5),
           string_param("held_node_value", name_of(d.held_node_value),
                        "what a held node reports: imposed (zero) or reconstructed (the average of the reconstruction)",
-                       names_of<HeldNodeValue>())};
+                       names_of<HeldNodeValue>()),
+          bool_param("convective_stress", d.convective_stress,
+                     "add the averaged convective flux -div sum m V V psi of the reconstructed particle velocities "
+                     "(for Re not small; not for an x-invariant scene); the steady state then by Newton's method"),
+          number_param("newton_tolerance", d.newton_tolerance,
+                       "with convective_stress: Newton stops when its step is below this fraction of the state (max norms)",
+                       1e-15, 1e-2),
+          integer_param("newton_max_iterations", d.newton_max_iterations,
+                        "with convective_stress: Newton's steps at most (numerical_issue beyond)", 1, 200)};
 }
 
 ForceDensity2DOptions force_density_2d_options_from(const json& s) {
@@ -34,6 +42,9 @@ ForceDensity2DOptions force_density_2d_options_from(const json& s) {
   o.window_cutoff = s.at("window_cutoff").get<double>();
   o.hold_fraction = s.at("hold_fraction").get<double>();
   o.held_node_value = parse_name<HeldNodeValue>(s.at("held_node_value").get<std::string>(), "/solver/held_node_value");
+  o.convective_stress = s.at("convective_stress").get<bool>();
+  o.newton_tolerance = s.at("newton_tolerance").get<double>();
+  o.newton_max_iterations = s.at("newton_max_iterations").get<int>();
   return o;
 }
 
@@ -97,6 +108,9 @@ void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, c
   if ((scene.has_walls || scene.solid_at) && scene.wall_model != WallModel::zero_velocity)
     throw ConfigError("/scene/wall_model", "the 2D force-density model holds the solids at their known zero velocity; "
                                            "use zero_velocity walls and solids");
+  if (o.convective_stress && scene.x_invariant)
+    throw ConfigError("/solver/convective_stress", "scene '" + scene.name + "' is x-invariant: its convective flux "
+                                                   "has no divergence (V_y = 0, nothing varies along x)");
   // The pair forces are linearised about the lattice's uniform number density: every solid particle a fluid particle
   // reaches must itself see a full stencil, so a wall must be two SPH supports thick.
   const double support = scene.smoothing_kernel().support();

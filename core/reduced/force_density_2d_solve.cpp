@@ -10,6 +10,7 @@
 
 #include "core/base/repeated_timing.hpp"
 #include "core/reduced/force_density_2d.hpp"
+#include "core/reduced/force_density_2d_assembly.hpp"
 
 namespace closurelab {
 
@@ -90,17 +91,23 @@ void ForceDensitySolver2D::rates_from_reconstruction(const Eigen::VectorXd& rx, 
   ax = viscous_ * rx + pressure_x_ * rn + body_x_;
   ay = viscous_ * ry + pressure_y_ * rn + body_y_;
   an = continuity_x_ * rx + continuity_y_ * ry;
+  if (opt_.convective_stress) {
+    Eigen::VectorXd qx, qy;
+    convective_rates(rx, ry, qx, qy);
+    ax += qx;
+    ay += qy;
+  }
 }
 
-namespace {
+namespace force_density_detail {
 
 // big z = rhs by LU, equilibrated (rows, then columns, to unit largest entry): the momentum and density rows differ in
 // units, and free nodes with a small fluid fraction have small rows; the condition estimate is then of the problem
 // itself. False (the reason in `issue`) when the system is singular to working precision. With `minimum_norm`, a
 // rank-deficient system is solved by a complete orthogonal decomposition (the minimum-norm solution of the equilibrated
 // system), which must then satisfy it to 1e-9 of the right-hand side.
-bool equilibrated_solve(Eigen::MatrixXd big, const Eigen::VectorXd& rhs, Eigen::VectorXd& z, std::string& issue,
-                        bool minimum_norm = false) {
+bool equilibrated_steady_solve(Eigen::MatrixXd big, const Eigen::VectorXd& rhs, Eigen::VectorXd& z, std::string& issue,
+                               bool minimum_norm) {
   const Eigen::VectorXd row_scale = big.rowwise().lpNorm<Eigen::Infinity>().cwiseMax(1e-300).cwiseInverse();
   big = row_scale.asDiagonal() * big;
   const Eigen::VectorXd col_scale = big.colwise().lpNorm<Eigen::Infinity>().transpose().cwiseMax(1e-300).cwiseInverse();
@@ -128,7 +135,9 @@ bool equilibrated_solve(Eigen::MatrixXd big, const Eigen::VectorXd& rhs, Eigen::
   return true;
 }
 
-}  // namespace
+}  // namespace force_density_detail
+
+using force_density_detail::equilibrated_steady_solve;
 
 bool ForceDensitySolver2D::steady_solve(std::string& issue) {
   // The rate is affine in the state z = (v̄_x, v̄_y, n̄) on the free nodes: rate = M z + c. Probed on unit data
@@ -154,7 +163,7 @@ bool ForceDensitySolver2D::steady_solve(std::string& issue) {
   Eigen::VectorXd z;
   if (scene_.x_invariant) {
     probe_seconds_ = seconds_since(t0);
-    if (!equilibrated_solve(mvv, -on_free(viscous_ * x0v + body_x_), z, issue)) return false;
+    if (!equilibrated_steady_solve(mvv, -on_free(viscous_ * x0v + body_x_), z, issue, false)) return false;
     vx_ = z;
     vy_ = n_ = zero;
     return true;
@@ -187,7 +196,10 @@ bool ForceDensitySolver2D::steady_solve(std::string& issue) {
   rhs.segment(f, f) = -on_free(viscous_ * x0v + pressure_y_ * x0n + body_y_);
   rhs.segment(2 * f, f) = -on_free(continuity_x_ * x0v + continuity_y_ * x0v);
   probe_seconds_ = seconds_since(t0);
-  if (!equilibrated_solve(std::move(big), rhs, z, issue, !has_solid)) return false;
+  // With the convective flux: the Stokes solution, then Newton's iteration from it.
+  const Eigen::MatrixXd stokes = opt_.convective_stress ? big : Eigen::MatrixXd();
+  if (!equilibrated_steady_solve(std::move(big), rhs, z, issue, !has_solid)) return false;
+  if (opt_.convective_stress && !newton_convective(stokes, rhs, xv, x0v, !has_solid, z, issue)) return false;
   vx_ = z.segment(0, f);
   vy_ = z.segment(f, f);
   n_ = z.segment(2 * f, f);
@@ -242,6 +254,9 @@ ForceDensity2DResult ForceDensitySolver2D::run() {
   res.setup_seconds = setup_seconds_;
   res.assembly_seconds = assembly_seconds_;
   res.probe_seconds = probe_seconds_;
+  res.newton_iterations = newton_iterations_;
+  res.newton_seconds = newton_seconds_;
+  res.newton_last_step = newton_last_step_;
   return res;
 }
 

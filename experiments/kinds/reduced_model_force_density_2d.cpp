@@ -109,9 +109,18 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     return out;
   }
 
-  // Rows stored before reference.file and timing.min_seconds existed.
+  // Rows stored before reference.file, timing.min_seconds and the solver's convective flux existed (those ran
+  // without it).
   json upgraded_params(json stored) const override {
-    return upgraded_reduced_params(with_reference_file_defaults(std::move(stored)));
+    stored = upgraded_reduced_params(with_reference_file_defaults(std::move(stored)));
+    if (stored.is_object() && stored.contains("solver") && stored["solver"].is_object() &&
+        !stored["solver"].contains("convective_stress")) {
+      const ForceDensity2DOptions d;
+      stored["solver"]["convective_stress"] = d.convective_stress;
+      stored["solver"]["newton_tolerance"] = d.newton_tolerance;
+      stored["solver"]["newton_max_iterations"] = d.newton_max_iterations;
+    }
+    return stored;
   }
 
   json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
@@ -231,6 +240,11 @@ class ReducedModelForceDensity2D : public ExperimentKind {
                  {"probe_seconds", reduced.probe_seconds},
                  {"deconvolution_seconds", reduced.deconvolution_seconds},
                  {"deconvolution_matvecs", reduced.deconvolution_matvecs}};
+    if (opt.convective_stress) {
+      cost["newton_iterations"] = reduced.newton_iterations;
+      cost["newton_seconds"] = reduced.newton_seconds;
+      cost["newton_last_relative_step"] = reduced.newton_last_step;
+    }
     finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, reduced.deconvolution_issues,
                        direct ? &direct->run : nullptr);
     if (from_file) mark_untimed_reference(row);  // no direct run was timed: no speed-up (null, not 0)

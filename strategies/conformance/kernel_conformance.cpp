@@ -2,6 +2,7 @@
 // registered kernel. Each tolerance is argued where it is used; the built-ins meet each by a factor of 10 or more.
 #include "strategies/conformance/kernel_conformance.hpp"
 
+#include <gsl/gsl_deriv.h>
 #include <gsl/gsl_integration.h>
 
 #include <cmath>
@@ -121,13 +122,35 @@ void bond_integral_matches_quadrature_and_short_bond_limit(const Subject& s, Exp
   }
 }
 
+// φ' against GSL's central difference of φ (gsl_deriv_central, step η/100, 5-point rule: truncation ~1e-10 of
+// φ(0)/η for the Gaussian) over the support, away from a cut-off window's jumps at ±support_radius: absolute
+// 1e-8 φ(0)/η plus ten times GSL's error estimate.
+void factor_derivative_matches_difference_quotient(const Subject& s, Expect& e) {
+  for (double eta : kEtas) {
+    const auto k = s.make(eta);
+    const double r = k->support_radius(), scale = k->factor(0.0) / eta, h = 0.01 * eta;
+    gsl_errors_as_status();
+    gsl_function F;
+    F.function = [](double t, void* p) { return static_cast<const AveragingKernel*>(p)->factor(t); };
+    F.params = const_cast<AveragingKernel*>(k.get());
+    for (double t = -0.97 * r; t <= 0.97 * r; t += 0.0485 * r) {
+      if (r - std::abs(t) < 4.0 * h) continue;
+      double d = 0.0, err = 0.0;
+      gsl_deriv_central(&F, t, h, &d, &err);
+      e.near(k->factor_derivative(t), d, 1e-8 * scale + 10.0 * err,
+             "factor_derivative(" + std::to_string(t / eta) + " eta) vs the central difference" + at_eta(eta));
+    }
+  }
+}
+
 using Check = void (*)(const Subject&, Expect&);
 const std::vector<std::pair<std::string, Check>>& all_checks() {
   static const std::vector<std::pair<std::string, Check>> checks = {
       {"window_is_even_nonnegative_and_supported", window_is_even_nonnegative_and_supported},
       {"normalization_is_one", normalization_is_one},
       {"fourier_symbol_matches_quadrature", fourier_symbol_matches_quadrature},
-      {"bond_integral_matches_quadrature_and_short_bond_limit", bond_integral_matches_quadrature_and_short_bond_limit}};
+      {"bond_integral_matches_quadrature_and_short_bond_limit", bond_integral_matches_quadrature_and_short_bond_limit},
+      {"factor_derivative_matches_difference_quotient", factor_derivative_matches_difference_quotient}};
   return checks;
 }
 

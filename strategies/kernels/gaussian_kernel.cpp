@@ -16,6 +16,8 @@ GaussianKernel::GaussianKernel(double eta) : eta_(eta) {
 
 double GaussianKernel::factor(double t) const { return std::exp(-t * t / (eta_ * eta_)) / (std::sqrt(M_PI) * eta_); }
 
+double GaussianKernel::factor_derivative(double t) const { return -2.0 * t / (eta_ * eta_) * factor(t); }
+
 double GaussianKernel::factor_symbol(double xi) const { return std::exp(-M_PI * M_PI * eta_ * eta_ * xi * xi); }
 
 double GaussianKernel::bond_integral(const Vec2& x, const Vec2& qj, const Vec2& qk) const {
@@ -33,6 +35,8 @@ double CutoffGaussianKernel::factor(double t) const {
   if (std::abs(t) > rc_) return 0.0;
   return std::exp(-t * t / (eta_ * eta_)) / (std::sqrt(M_PI) * eta_ * z_);
 }
+
+double CutoffGaussianKernel::factor_derivative(double t) const { return -2.0 * t / (eta_ * eta_) * factor(t); }
 
 double CutoffGaussianKernel::factor_symbol(double xi) const {
   struct P {

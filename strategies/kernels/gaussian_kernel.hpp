@@ -10,6 +10,7 @@ class GaussianKernel : public AveragingKernel {
   std::string name() const override { return "gaussian"; }
   double eta() const override { return eta_; }
   double factor(double t) const override;
+  double factor_derivative(double t) const override;  // −2t/η² φ(t)
   double factor_symbol(double xi) const override;  // exp(−π² η² ξ²), cf. (4.15)
   double support_radius() const override { return 6.0 * eta_; }  // exp(−36) ≈ 2.3e-16
   double bond_integral(const Vec2& x, const Vec2& qj, const Vec2& qk) const override;
@@ -26,6 +27,7 @@ class CutoffGaussianKernel : public AveragingKernel {
   std::string name() const override { return "cutoff_gaussian"; }
   double eta() const override { return eta_; }
   double factor(double t) const override;
+  double factor_derivative(double t) const override;  // −2t/η² φ_c(t) inside the box (φ_c jumps at ±r_c)
   double factor_symbol(double xi) const override;  // by GSL adaptive quadrature
   double support_radius() const override { return rc_; }
   double bond_integral(const Vec2& x, const Vec2& qj, const Vec2& qk) const override;

@@ -92,6 +92,9 @@ TEST_P(KernelConformance, FourierSymbolMatchesQuadrature) { expect_conforms("fou
 TEST_P(KernelConformance, BondIntegralMatchesQuadratureAndShortBondLimit) {
   expect_conforms("bond_integral_matches_quadrature_and_short_bond_limit");
 }
+TEST_P(KernelConformance, FactorDerivativeMatchesDifferenceQuotient) {
+  expect_conforms("factor_derivative_matches_difference_quotient");
+}
 INSTANTIATE_TEST_SUITE_P(AllRegistered, KernelConformance, ::testing::ValuesIn(names_of(builtin_registry().kernels)), test_name);
 
 TEST_P(QuadratureConformance, HasAFinestSetting) {

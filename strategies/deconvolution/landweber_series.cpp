@@ -91,7 +91,7 @@ class LandweberSeries : public DeconvolverBase {
       ScanPoint p;
       p.parameter = n;
       p.residual_norm = robust_norm(r);
-      p.solution_norm = robust_norm(x);
+      p.solution_norm = lifting_ ? robust_norm(render(x)) : robust_norm(x);  // ‖x_n‖ on the solution mesh
       p.matvecs = n + 1;
       p.last = n == max_order;
       if (!(p.residual_norm <= (1.0 + growth_tolerance) * previous + floor)) {  // growth beyond rounding

@@ -3,6 +3,7 @@
 // the wall rows beyond them known zeros) it equals the dense formula x_n = J Σ_{k<=n} (I − A J)^k b with J built
 // here independently (linear interpolation written out), order 0 is J b, the reported residual is ‖b − A x_n‖, and
 // as n grows x_n converges to J c* with A J c* = b (on data from a coarse field, that field's interpolant).
+// The reported ‖x_n‖ is that of J c_n; the discrepancy rule stops the lifted series at the first order within τδ.
 // lift = none is the series as before, bit for bit; lift = interpolation on a square operator whose two meshes
 // are the same (J = I) is the plain series; the lift refuses a plain matrix, and none refuses a rectangular A.
 #include <gtest/gtest.h>
@@ -74,6 +75,7 @@ TEST(DeconvLandweberLift, EqualsTheDenseSeriesOnAChannelsCoarseFineOperator) {
       ASSERT_EQ(r.x.size(), 96);
       EXPECT_LE((r.x - expected).norm(), 1e-13 * expected.norm()) << "order " << n;
       EXPECT_EQ(r.stats.chosen_parameter, n);
+      EXPECT_NEAR(r.stats.solution_norm, expected.norm(), 1e-13 * expected.norm()) << "order " << n;
       if (report) {
         EXPECT_NEAR(r.stats.residual_norm, (b - ad * r.x).norm(), 1e-13 * b.norm()) << "order " << n;
       }
@@ -154,4 +156,28 @@ TEST(DeconvLandweberLift, RefusesWhatItCannotServe) {
   }
   EXPECT_THROW(builtin_registry().deconvolvers.create(json{{"name", "landweber"}, {"lift", "projected"}}, "/m"),
                ConfigError);
+}
+
+TEST(DeconvLandweberLift, TheDiscrepancyRuleStopsTheLiftedSeries) {
+  // The rules walk the same scan: on data with noise of norm δ the discrepancy principle stops at the first order
+  // whose residual ‖b − A x_n‖ is within τ δ, and the solution is that order's J c_n.
+  const GaussianKernel k(1.0 / 32);
+  const ForwardOperator a = make_averaging_operator_1d(k, kCoarse, kFine, Discretization::coarse_fine);
+  const Eigen::MatrixXd aj = a.to_dense() * interpolation(kCoarse, kFine);
+  Eigen::VectorXd noise(17);
+  for (int i = 0; i < 17; ++i) noise[i] = 1e-3 * std::cos(5.0 * i);
+  const Eigen::VectorXd b = aj * channel_data() + noise;
+  auto d = builtin_registry().deconvolvers.create(
+      json{{"name", "landweber"}, {"lift", "interpolation"}, {"rule", "discrepancy"}, {"max_order", 1000}}, "/m");
+  d->setup(a);
+  const DeconvolutionResult r = d->solve(b, noise.norm());
+  ASSERT_EQ(r.status, Status::converged) << r.stats.message;
+  const int n = static_cast<int>(r.stats.chosen_parameter);
+  EXPECT_GT(n, 0);
+  EXPECT_LT(n, 1000);
+  EXPECT_LE((b - a.apply(r.x)).norm(), 1.01 * noise.norm() * (1 + 1e-12));
+  const DeconvolutionResult fixed = landweber(a, n, "interpolation")->solve(b);
+  EXPECT_LE((r.x - fixed.x).norm(), 1e-14 * fixed.x.norm());
+  const Eigen::VectorXd before = landweber(a, n - 1, "interpolation")->solve(b).x;  // n > 0 asserted above
+  EXPECT_GT((b - a.apply(before)).norm(), 1.01 * noise.norm());
 }

@@ -28,6 +28,15 @@ const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds() {
 
 json ExperimentKind::upgraded_params(json stored) const {
   if (stored.is_object() && stored.contains("scene")) stored["scene"] = upgraded_scene_params(stored["scene"]);
+  // The Landweber series' lift, added since: rows before it ran the series on a square operator (lift none); the
+  // stability kind's `method`, the snapshot closure's `closure.deconvolver` (the reduced kinds: upgraded_reduced_params).
+  const auto lift = [](json& d) {
+    if (d.is_object() && d.value("name", "") == "landweber" && !d.contains("lift")) d["lift"] = "none";
+  };
+  if (stored.is_object() && stored.contains("method")) lift(stored["method"]);
+  if (stored.is_object() && stored.contains("closure") && stored["closure"].is_object() &&
+      stored["closure"].contains("deconvolver"))
+    lift(stored["closure"]["deconvolver"]);
   return stored;
 }
 

@@ -79,6 +79,11 @@ json upgraded_reduced_params(json params) {
   }
   if (params.contains("timing") && params["timing"].is_object() && !params["timing"].contains("min_seconds"))
     params["timing"]["min_seconds"] = 0.0;
+  // The Landweber series' lift, added since: the rows before it ran the series on a square operator (lift none).
+  if (params.contains("closure") && params["closure"].is_object() && params["closure"].contains("deconvolver")) {
+    json& d = params["closure"]["deconvolver"];
+    if (d.is_object() && d.value("name", "") == "landweber" && !d.contains("lift")) d["lift"] = "none";
+  }
   return params;
 }
 

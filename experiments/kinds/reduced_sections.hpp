@@ -36,7 +36,7 @@ json resolve_transient(const json& cell, const std::string& path);
 std::vector<double> transient_times(const json& transient, const Scene& scene);
 // A stored row's resolved parameters as this version resolves them (the reduced kinds' upgraded_params):
 // the scene's (upgraded_scene_params); transient.t_star renamed t_over_tau; timing.min_seconds, added since, set to
-// 0, as those rows were timed.
+// 0, as those rows were timed; a landweber closure's lift, added since, set to none (the series they ran).
 json upgraded_reduced_params(json params);
 
 // "timing": how the reduced run is repeated (core/base/repeated_timing.hpp).

@@ -39,6 +39,9 @@ QUESTIONS = {
     "near_wall/two_phase_192": "With the near-wall formulation at the paper's resolution (n_y = 192), how close is the two-phase reduced model (cases 1, 2)?",
     "near_wall/fig2_192_steady1e-6": "As near_wall/fig2_192, the direct SPH run to a ten times tighter steady test: does the error depend on where the reference stopped?",
     "near_wall/two_phase_192_steady1e-6": "As near_wall/two_phase_192, the direct SPH run to a ten times tighter steady test: does the error depend on where the reference stopped?",
+    "near_wall/landweber_known_zeros_uniform": "Does the paper's Landweber closure of order n = 0, 1, 2 improve under the near-wall balance when it knows the wall rows' zeros (uniform channel, n_y = 192)?",
+    "near_wall/landweber_known_zeros_fig4": "Does the paper's Landweber closure of order n = 0, 1, 2 with the known zeros reach Fig. 4's second-order target (<= 8 %) under the near-wall balance?",
+    "near_wall/landweber_known_zeros_two_phase": "Does the paper's second-order Landweber closure with the known zeros reach <= 1.5 % on the two-phase cases 1-3 (n_y = 192)?",
     "near_wall/tikhonov_rules_two_phase": "Which alpha does each rule choose for the near-wall closure on the two-phase cases 1-3 (n_y = 192), and at what error?",
 }
 

@@ -5,7 +5,7 @@
 namespace closurelab {
 
 void register_deconvolvers(Registry& r) {
-  r.deconvolvers.add({"landweber", "Landweber series of order n, x_n = sum_{k<=n} (I - A)^k b, (4.3)/(4.9); square A",
+  r.deconvolvers.add({"landweber", "Landweber series of order n, x_n = sum_{k<=n} (I - A)^k b, (4.3)/(4.9); square A, or any A with lift = interpolation",
                       landweber_series_schema()},
                      make_landweber_series);
   r.deconvolvers.add({"landweber_relaxed", "relaxed Landweber x_{k+1} = x_k + omega A'(b - A x_k), any A",

@@ -19,7 +19,8 @@ SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles)
   // neighbours a skin of ε'/2 lists, all beyond the support 3ε') out of the list: the density pass takes 28
   // neighbours per particle instead of 36. The list is rebuilt after a displacement of 0.075 ε' instead of 0.25 ε'
   // (75 rebuilds instead of 23 in a steady channel run of 44 000 steps at n_y = 96: a small share of its time).
-  // Listed pairs beyond the support add exact zeros, so the skin changes no bit of the particles.
+  // Listed pairs beyond the support add exact zeros, so the skin changes no bit of a one-thread run (on more
+  // threads the rows' split among them follows the list: round-off, as between thread counts).
   skin_ = 0.15 * scene.dx;
   mass_ = scene.particle_mass();
   const std::size_t n = ps_.size();

@@ -62,9 +62,9 @@ BENCHMARK(Foundation_NeighbourSearch)->Args({192, 12})->Args({192, 192})->Unit(b
 // the 1- and 2-thread rows of one run compare.
 static void Foundation_SphStep(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(2)));
-  const PairKernelIsa isa = state.range(3) ? PairKernelIsa::avx2 : PairKernelIsa::baseline;
+  const PairKernelIsa isa = static_cast<PairKernelIsa>(state.range(3));
   if (!pair_kernel_isa_available(isa)) {
-    state.SkipWithError("no AVX2 pair kernel in this build or CPU");
+    state.SkipWithError("this pair kernel is not in this build or CPU");
     return;
   }
   const PairKernelIsa chosen = pair_kernel_isa();
@@ -80,10 +80,12 @@ static void Foundation_SphStep(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(engine.moving().size()));
   set_pair_kernel_isa(chosen);
 }
-// The last argument: the density pass's kernel loop compiled for AVX2 (1, where available) or the baseline (0).
+// The last argument: the density pass's kernel loop compiled for the baseline (0), AVX2 (1) or AVX-512 (2), where
+// available (PairKernelIsa); 96 x 96 is the peer benchmark's larger box (scripts/peer_bench.py).
 BENCHMARK(Foundation_SphStep)
-    ->ArgsProduct({{192}, {12, 192}, {1, 2}, {1}})
-    ->Args({192, 192, 1, 0})
-    ->ArgNames({"n_y", "n_x", "threads", "avx2"})
+    ->ArgsProduct({{192}, {12, 192}, {1, 2}, {2}})
+    ->ArgsProduct({{96}, {96}, {1}, {0, 1, 2}})
+    ->ArgsProduct({{192}, {192}, {1}, {0, 1}})
+    ->ArgNames({"n_y", "n_x", "threads", "isa"})
     ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);

@@ -4,6 +4,11 @@ count, printing each pair's ratio (PySPH seconds per step / closurelab seconds p
 
   /usr/bin/python3 scripts/peer_bench.py [--closurelab build/experiments/closurelab] [--sizes 48 96]
                                          [--threads 1 2] [--pairs 3] [--steps 200] [--out FILE]
+                                         [--control OTHER_CLOSURELAB]
+
+--control runs a second closurelab build (e.g. of the commit before an engine change) in every pair as well,
+right after the first (A, A', B), and prints its ratio and the speed-up A'/A beside the first's: an engine
+change measured against its predecessor under the same load.
 
 What is timed: closurelab's SPH run (the row's cost.wall_seconds: the time loop, not the process start, the
 scene set-up or the averaging), and PySPH's "Run took" (its solver loop with the first and last dump, not the
@@ -84,6 +89,7 @@ def main():
     ap.add_argument("--pairs", type=int, default=3)
     ap.add_argument("--steps", type=int, default=200)
     ap.add_argument("--out", help="also write the report to this file")
+    ap.add_argument("--control", help="a second closurelab build, run in every pair right after the first")
     a = ap.parse_args()
 
     lines = []
@@ -101,6 +107,8 @@ def main():
     say("# commit %s%s; %s; python %s; %s" % (commit, " (dirty)" if dirty else "", platform.node(),
                                               platform.python_version(), date()))
     say("# cpu: %s, %d logical cores" % (cpu_model(), os.cpu_count()))
+    if a.control:
+        say("# control (A'): %s" % os.path.abspath(a.control))
     say("# load before: %s" % uptime())
     work = tempfile.mkdtemp(prefix="closurelab_peer_bench_")
     try:
@@ -110,10 +118,11 @@ def main():
         summary = []
         for ny in a.sizes:
             for t in a.threads:
-                ratios = []
+                ratios, control_ratios, speed_ups = [], [], []
                 say("n_y = n_x = %d (%d particles), %d thread(s), %d steps:" % (ny, ny * ny, t, a.steps))
                 for k in range(a.pairs):
                     ca, steps, particle_steps = run_closurelab(a.closurelab, ny, a.steps, t, work)
+                    cc = run_closurelab(a.control, ny, a.steps, t, work)[0] if a.control else None
                     pb, pysph_steps = run_pysph(ny, a.steps, t, work)
                     if pysph_steps != steps:
                         raise SystemExit("step counts differ: closurelab %d, PySPH %d" % (steps, pysph_steps))
@@ -121,8 +130,17 @@ def main():
                     ratios.append(r)
                     say("  pair %d: closurelab %.4f s (%.3g particle-steps/s), PySPH %.4f s: ratio %.2f"
                         % (k + 1, ca, particle_steps / ca, pb, r))
+                    if cc is not None:
+                        control_ratios.append(pb / cc)
+                        speed_ups.append(cc / ca)
+                        say("          control %.4f s (%.3g particle-steps/s): ratio %.2f; A'/A %.2f"
+                            % (cc, particle_steps / cc, pb / cc, cc / ca))
                 med = statistics.median(ratios)
                 say("  ratio median %.2f, range %.2f-%.2f (%d pairs)" % (med, min(ratios), max(ratios), len(ratios)))
+                if control_ratios:
+                    say("  control ratio median %.2f, range %.2f-%.2f; A'/A median %.2f, range %.2f-%.2f"
+                        % (statistics.median(control_ratios), min(control_ratios), max(control_ratios),
+                           statistics.median(speed_ups), min(speed_ups), max(speed_ups)))
                 summary.append((ny, t, med, min(ratios), max(ratios)))
         say("# summary (PySPH time / closurelab time per step, same particles and steps):")
         for ny, t, med, lo, hi in summary:

@@ -7,8 +7,8 @@
 // accumulators. Only the particles a scene needs are stepped: wall particles farther than the interaction range
 // from every fluid particle take no part.
 // The density pass computes the kernel values of a block of listed pairs in one vectorized loop (w and w'/r from
-// r², SmoothingKernel::w_and_dw_over_r, without branches; compiled for AVX2 and the baseline on x86-64, same
-// bits, PairKernelIsa), then adds them row by row; the force pass sums each row's force on its particle in registers.
+// r², SmoothingKernel::w_and_dw_over_r, without branches; compiled for AVX-512, AVX2 and the baseline on x86-64,
+// same bits, PairKernelIsa), then adds them row by row; the force pass sums each row's force on its particle in registers.
 // List pairs beyond the support contribute zero instead of being skipped; the reciprocals 1/n are taken once per
 // particle; only the fluid–wall pairs of ghost-velocity walls take the general path (their ghost velocity).
 #include <array>
@@ -37,14 +37,15 @@ struct SphPairInput {
   double p_over_n2, inv_n, vx, vy;
 };
 
-// The instruction set of the density pass's kernel loop: AVX2 where an x86-64 baseline build runs on a CPU that
-// has it, else the build's own. Both compute the same bits (no fused multiply-add); tests compare them.
-enum class PairKernelIsa { baseline, avx2 };
+// The instruction set of the density pass's kernel loop: the widest of AVX-512 (eight pairs per vector) and AVX2
+// (four) that the CPU has where an x86-64 baseline build runs, else the build's own. All compute the same bits (no
+// fused multiply-add); tests compare them.
+enum class PairKernelIsa { baseline, avx2, avx512 };
 
 template <>
 struct EnumNames<PairKernelIsa> {
-  static constexpr std::array<std::pair<PairKernelIsa, std::string_view>, 2> table{
-      {{PairKernelIsa::baseline, "baseline"}, {PairKernelIsa::avx2, "avx2"}}};
+  static constexpr std::array<std::pair<PairKernelIsa, std::string_view>, 3> table{
+      {{PairKernelIsa::baseline, "baseline"}, {PairKernelIsa::avx2, "avx2"}, {PairKernelIsa::avx512, "avx512"}}};
 };
 
 bool pair_kernel_isa_available(PairKernelIsa isa);

@@ -1,5 +1,5 @@
-// Which compilation of the density kernel loop the engine uses (PairKernelIsa): AVX2 where the baseline build
-// runs on a CPU that has it, unless a test or benchmark chose otherwise.
+// Which compilation of the density kernel loop the engine uses (PairKernelIsa): AVX-512, else AVX2, where the
+// baseline build runs on a CPU that has it, unless a test or benchmark chose otherwise.
 #include <atomic>
 #include <stdexcept>
 #include <string>
@@ -12,6 +12,9 @@ namespace {
 
 std::atomic<PairKernelIsa>& chosen_isa() {
   static std::atomic<PairKernelIsa> isa{[] {
+#if CLOSURELAB_AVX512_CLONE
+    if (__builtin_cpu_supports("avx512f")) return PairKernelIsa::avx512;
+#endif
 #if CLOSURELAB_AVX2_CLONE
     if (__builtin_cpu_supports("avx2")) return PairKernelIsa::avx2;
 #endif
@@ -23,6 +26,11 @@ std::atomic<PairKernelIsa>& chosen_isa() {
 }  // namespace
 
 bool pair_kernel_isa_available(PairKernelIsa isa) {
+#if CLOSURELAB_AVX512_CLONE
+  if (isa == PairKernelIsa::avx512) return __builtin_cpu_supports("avx512f");
+#else
+  if (isa == PairKernelIsa::avx512) return false;
+#endif
 #if CLOSURELAB_AVX2_CLONE
   if (isa == PairKernelIsa::avx2) return __builtin_cpu_supports("avx2");
 #else

@@ -11,12 +11,17 @@
 #include "core/sph/sph_kernel.hpp"
 #include "core/sph/sph_pair_force.hpp"
 
-// A second compilation of the density kernel loop for AVX2, chosen at run time (PairKernelIsa), where the
-// baseline lacks it.
+// Further compilations of the density kernel loop for AVX2 and AVX-512, chosen at run time (PairKernelIsa), where
+// the baseline lacks them.
 #if defined(__x86_64__) && !defined(__AVX2__)
 #define CLOSURELAB_AVX2_CLONE 1
 #else
 #define CLOSURELAB_AVX2_CLONE 0
+#endif
+#if defined(__x86_64__) && !defined(__AVX512F__)
+#define CLOSURELAB_AVX512_CLONE 1
+#else
+#define CLOSURELAB_AVX512_CLONE 0
 #endif
 
 namespace closurelab {
@@ -73,6 +78,21 @@ template <SmoothingKernel::Type T>
 }
 #endif
 
+#if CLOSURELAB_AVX512_CLONE
+// The same loop compiled for AVX-512 (eight pairs per vector). AVX-512F implies FMA, so the file that instantiates
+// it, sph_engine.cpp, is compiled with -ffp-contract=off (core/CMakeLists.txt): no product is fused into a sum and
+// the bits are the baseline's (test SphEngineVectorKernels).
+template <SmoothingKernel::Type T>
+[[gnu::target("avx512f")]] void density_kernel_avx512(const SmoothingKernel kernel, double lx, double ly, double ilx,
+                                                      double ily, const double* __restrict x,
+                                                      const double* __restrict y, const std::int32_t* __restrict pi,
+                                                      const std::int32_t* __restrict pj, std::size_t len,
+                                                      double* __restrict qx, double* __restrict qy,
+                                                      double* __restrict dw_over_r, double* __restrict w) {
+  density_kernel<T>(kernel, lx, ly, ilx, ily, x, y, pi, pj, len, qx, qy, dw_over_r, w);
+}
+#endif
+
 // The density pass over blocks [b0, b1): per block the kernel loop, then row by row w added to the densities in
 // n: particle i's sum kept in a register over its row, only j's scattered (a pair-by-pair scatter chains through
 // memory whenever consecutive pairs share a particle). Listed pairs beyond the support give w = w'/r = 0.
@@ -86,6 +106,12 @@ void density_blocks(const SmoothingKernel kernel, const PeriodicBox box, const d
   for (std::size_t b = b0; b < b1; ++b) {
     const std::size_t r0 = g.block_row[b], r1 = g.block_row[b + 1];
     const std::size_t p0 = g.row_begin[r0], len = g.row_begin[r1] - p0;
+#if CLOSURELAB_AVX512_CLONE
+    if (isa == PairKernelIsa::avx512)
+      density_kernel_avx512<T>(kernel, lx, ly, ilx, ily, x, y, g.pi + p0, g.pj + p0, len, qx + p0, qy + p0,
+                               dw_over_r + p0, w);
+    else
+#endif
 #if CLOSURELAB_AVX2_CLONE
     if (isa == PairKernelIsa::avx2)
       density_kernel_avx2<T>(kernel, lx, ly, ilx, ily, x, y, g.pi + p0, g.pj + p0, len, qx + p0, qy + p0,
@@ -141,6 +167,35 @@ void force_rows(const PairBlocks& g, std::size_t r0, std::size_t r1, const doubl
       const int j = g.pj[p];
       double fx, fy;
       pair(i, j, p, fx, fy);
+      sx += fx;
+      sy += fy;
+      f[2 * j] -= fx;
+      f[2 * j + 1] -= fy;
+    }
+    f[2 * i] += sx;
+    f[2 * i + 1] += sy;
+  }
+}
+
+// force_rows for a one-phase scene without ghost velocities: force_pair<true> with particle i's inputs held in
+// registers over its row (through a pair callback they are reloaded at every pair, since the scatter to f might
+// alias them). The same operations in the same order: the same bits.
+inline void force_rows_one_phase(const PairBlocks& g, std::size_t r0, std::size_t r1, const ForceInputs& in,
+                                 const double* __restrict F, const double* __restrict qx,
+                                 const double* __restrict qy, double* __restrict f) {
+  const SphPairInput* __restrict s = in.s;
+  const double mu_ij = in.mu_single;
+  for (std::size_t r = r0; r < r1; ++r) {
+    const int i = g.row_i[r];
+    const SphPairInput a = s[i];
+    double sx = 0.0, sy = 0.0;
+    for (std::size_t p = g.row_begin[r], e = g.row_begin[r + 1]; p < e; ++p) {
+      if (F[p] == 0.0) continue;
+      const int j = g.pj[p];
+      const SphPairInput b = s[j];
+      double fx, fy;
+      sph_pair_force(a.p_over_n2 + b.p_over_n2, mu_ij * (a.inv_n * b.inv_n), F[p], qx[p], qy[p], a.vx - b.vx,
+                     a.vy - b.vy, fx, fy);
       sx += fx;
       sy += fy;
       f[2 * j] -= fx;

@@ -176,12 +176,16 @@ TEST(SphEngineReference, CylinderLatticeFrozenSolid) {
   EXPECT_LT(d.velocity, kTolerance);
 }
 
-// The density pass's two compilations (PairKernelIsa: AVX2 and the baseline) must give the same bits: neither
+// The density pass's compilations (PairKernelIsa: AVX-512, AVX2 and the baseline) must give the same bits: none
 // uses fused multiply-adds, and each lane does the scalar loop's operations in the same order. A direct run's
 // particles are then the same on every x86-64 machine (the reference store reuses runs across machines).
-// Both kernels are run for 200 steps on each kernel type and wall model; every coordinate must be equal.
-TEST(SphEngineVectorKernels, Avx2AndBaselineGiveTheSameBits) {
-  if (!pair_kernel_isa_available(PairKernelIsa::avx2)) GTEST_SKIP() << "no AVX2 pair kernel in this build or CPU";
+// Each available kernel is run for 200 steps on each kernel type and wall model; every coordinate must equal the
+// baseline's.
+TEST(SphEngineVectorKernels, VectorKernelsAndBaselineGiveTheSameBits) {
+  std::vector<PairKernelIsa> vector_isas;
+  for (const PairKernelIsa isa : {PairKernelIsa::avx2, PairKernelIsa::avx512})
+    if (pair_kernel_isa_available(isa)) vector_isas.push_back(isa);
+  if (vector_isas.empty()) GTEST_SKIP() << "no vector pair kernel in this build or CPU";
   const PairKernelIsa chosen = pair_kernel_isa();
   for (const json& params : {json{{"name", "poiseuille-uniform"}, {"n_y", 24}},
                              json{{"name", "poiseuille-periodic"},
@@ -193,7 +197,9 @@ TEST(SphEngineVectorKernels, Avx2AndBaselineGiveTheSameBits) {
                              json{{"name", "kolmogorov"}, {"n_y", 24}}}) {
     const auto scene = builtin_registry().scenes.create(params, "/scene");
     std::vector<ParticleSystem> runs;
-    for (const PairKernelIsa isa : {PairKernelIsa::baseline, PairKernelIsa::avx2}) {
+    std::vector<PairKernelIsa> isas{PairKernelIsa::baseline};
+    isas.insert(isas.end(), vector_isas.begin(), vector_isas.end());
+    for (const PairKernelIsa isa : isas) {
       set_pair_kernel_isa(isa);
       ParticleSystem ps = scene->make_particles();
       SphEngine engine(*scene, ps);
@@ -201,17 +207,24 @@ TEST(SphEngineVectorKernels, Avx2AndBaselineGiveTheSameBits) {
       for (int k = 0; k < 200; ++k) engine.step(dt);
       runs.push_back(ps);
     }
-    std::size_t differ = 0;
-    for (std::size_t p = 0; p < runs[0].size(); ++p)
-      differ += runs[0].x[p] != runs[1].x[p] || runs[0].y[p] != runs[1].y[p] || runs[0].vx[p] != runs[1].vx[p] ||
-                runs[0].vy[p] != runs[1].vy[p];
-    EXPECT_EQ(differ, 0u) << params.dump();
+    for (std::size_t r = 1; r < runs.size(); ++r) {
+      std::size_t differ = 0;
+      for (std::size_t p = 0; p < runs[0].size(); ++p)
+        differ += runs[0].x[p] != runs[r].x[p] || runs[0].y[p] != runs[r].y[p] || runs[0].vx[p] != runs[r].vx[p] ||
+                  runs[0].vy[p] != runs[r].vy[p];
+      EXPECT_EQ(differ, 0u) << name_of(isas[r]) << " against the baseline: " << params.dump();
+    }
     EXPECT_NE(runs[0].vx, scene->make_particles().vx) << "the flow must have moved: " << params.dump();
   }
   set_pair_kernel_isa(chosen);
 }
 
 TEST(SphEngineVectorKernels, AnUnavailableKernelIsRefused) {
-  if (pair_kernel_isa_available(PairKernelIsa::avx2)) GTEST_SKIP() << "AVX2 is available here";
-  EXPECT_THROW(set_pair_kernel_isa(PairKernelIsa::avx2), std::invalid_argument);
+  bool any_unavailable = false;
+  for (const PairKernelIsa isa : {PairKernelIsa::avx2, PairKernelIsa::avx512}) {
+    if (pair_kernel_isa_available(isa)) continue;
+    any_unavailable = true;
+    EXPECT_THROW(set_pair_kernel_isa(isa), std::invalid_argument) << name_of(isa);
+  }
+  if (!any_unavailable) GTEST_SKIP() << "AVX2 and AVX-512 are both available here";
 }

@@ -190,7 +190,12 @@ void SphEngine::force_rows_of_thread(std::size_t t, std::size_t nt) {
   const double *F = pair_f_.data(), *qx = pair_dx_.data(), *qy = pair_dy_.data();
   if (scene_.wall_model != WallModel::ghost_velocity) {
     if (one_phase_)
-      pair_passes::force_rows_one_phase(g, r0, r1, in, F, qx, qy, f);
+      pair_passes::force_rows(
+          g, r0, r1, F,
+          [&](int i, int j, std::size_t p, double& fx, double& fy) {
+            pair_passes::force_pair<true>(in, i, j, F[p], qx[p], qy[p], fx, fy);
+          },
+          f);
     else
       pair_passes::force_rows(
           g, r0, r1, F,

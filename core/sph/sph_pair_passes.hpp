@@ -177,34 +177,5 @@ void force_rows(const PairBlocks& g, std::size_t r0, std::size_t r1, const doubl
   }
 }
 
-// force_rows for a one-phase scene without ghost velocities: force_pair<true> with particle i's inputs held in
-// registers over its row (through a pair callback they are reloaded at every pair, since the scatter to f might
-// alias them). The same operations in the same order: the same bits.
-inline void force_rows_one_phase(const PairBlocks& g, std::size_t r0, std::size_t r1, const ForceInputs& in,
-                                 const double* __restrict F, const double* __restrict qx,
-                                 const double* __restrict qy, double* __restrict f) {
-  const SphPairInput* __restrict s = in.s;
-  const double mu_ij = in.mu_single;
-  for (std::size_t r = r0; r < r1; ++r) {
-    const int i = g.row_i[r];
-    const SphPairInput a = s[i];
-    double sx = 0.0, sy = 0.0;
-    for (std::size_t p = g.row_begin[r], e = g.row_begin[r + 1]; p < e; ++p) {
-      if (F[p] == 0.0) continue;
-      const int j = g.pj[p];
-      const SphPairInput b = s[j];
-      double fx, fy;
-      sph_pair_force(a.p_over_n2 + b.p_over_n2, mu_ij * (a.inv_n * b.inv_n), F[p], qx[p], qy[p], a.vx - b.vx,
-                     a.vy - b.vy, fx, fy);
-      sx += fx;
-      sy += fy;
-      f[2 * j] -= fx;
-      f[2 * j + 1] -= fy;
-    }
-    f[2 * i] += sx;
-    f[2 * i + 1] += sy;
-  }
-}
-
 }  // namespace pair_passes
 }  // namespace closurelab

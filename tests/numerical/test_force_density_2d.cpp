@@ -18,6 +18,7 @@
 #include "core/sph/sph_engine.hpp"
 #include "core/sph/sph_kernel.hpp"
 #include "core/sph/sph_pair_force.hpp"
+#include "tests/support/force_density_setup.hpp"
 #include "tests/support/linearised_pressure.hpp"
 
 using namespace closurelab;
@@ -25,35 +26,15 @@ using closurelab::testing::linearised_pressure_force;
 
 namespace {
 
-struct Lattice {
-  std::unique_ptr<Scene> scene;
-  std::unique_ptr<AveragingKernel> kernel;
-  std::unique_ptr<Deconvolver> dv, dn;
-};
+using Lattice = closurelab::test_support::ForceDensitySetup;
+using closurelab::test_support::random_field;
 
 Lattice make_setup(const json& scene_extra = json::object(), const json& deconvolver = json{{"name", "tikhonov"}}) {
-  const Registry& reg = builtin_registry();
-  json s = {{"name", "cylinder-lattice"}, {"n", 32}, {"eta_over_l", 0.125}, {"radius_over_length", 0.2}};
-  s.update(scene_extra);
-  Lattice out;
-  out.scene = reg.scenes.create(reg.scenes.resolve(s, "/scene"), "/scene");
-  out.kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", out.scene->eta}}, "/kernel");
-  const json d = reg.deconvolvers.resolve(deconvolver, "/d");
-  out.dv = reg.deconvolvers.create(d, "/d");
-  out.dn = reg.deconvolvers.create(d, "/d");
-  return out;
+  return closurelab::test_support::cylinder_lattice_setup(scene_extra, deconvolver);
 }
 
 ForceDensity2DOptions options(const json& solver = json::object()) {
-  return force_density_2d_options_from(resolve_params(solver, force_density_2d_schema(), "/solver", {}));
-}
-
-Eigen::VectorXd random_field(Eigen::Index n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::VectorXd x(n);
-  for (Eigen::Index k = 0; k < n; ++k) x[k] = u(gen);
-  return x;
+  return closurelab::test_support::force_density_options(solver);
 }
 
 // The mass-weighted average (2.9) at the coarse nodes of a per-particle quantity q (zero on the solid).

@@ -7,46 +7,23 @@
 
 #include <cmath>
 #include <cstdio>
-#include <random>
 
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/registry.hpp"
 #include "core/reduced/force_density_2d.hpp"
+#include "tests/support/force_density_setup.hpp"
 
 using namespace closurelab;
 
 namespace {
 
-struct Lattice {
-  std::unique_ptr<Scene> scene;
-  std::unique_ptr<AveragingKernel> kernel;
-  std::unique_ptr<Deconvolver> dv, dn;
-};
+using Lattice = closurelab::test_support::ForceDensitySetup;
+using closurelab::test_support::random_field;
 
-Lattice make_setup(double g) {
-  const Registry& reg = builtin_registry();
-  const json s = {{"name", "cylinder-lattice"}, {"n", 32}, {"eta_over_l", 0.125}, {"radius_over_length", 0.2}, {"g", g}};
-  Lattice out;
-  out.scene = reg.scenes.create(reg.scenes.resolve(s, "/scene"), "/scene");
-  out.kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", out.scene->eta}}, "/kernel");
-  const json d = reg.deconvolvers.resolve(json{{"name", "tikhonov"}}, "/d");
-  out.dv = reg.deconvolvers.create(d, "/d");
-  out.dn = reg.deconvolvers.create(d, "/d");
-  return out;
-}
+Lattice make_setup(double g) { return closurelab::test_support::cylinder_lattice_setup(json{{"g", g}}); }
 
-ForceDensity2DOptions options(const json& solver) {
-  return force_density_2d_options_from(resolve_params(solver, force_density_2d_schema(), "/solver", {}));
-}
-
-Eigen::VectorXd random_field(Eigen::Index n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::VectorXd x(n);
-  for (Eigen::Index k = 0; k < n; ++k) x[k] = u(gen);
-  return x;
-}
+ForceDensity2DOptions options(const json& solver) { return closurelab::test_support::force_density_options(solver); }
 
 double max_abs(const Eigen::VectorXd& v) { return v.cwiseAbs().maxCoeff(); }
 

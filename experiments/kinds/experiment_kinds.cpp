@@ -29,7 +29,7 @@ const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds() {
 json ExperimentKind::upgraded_params(json stored) const {
   if (stored.is_object() && stored.contains("scene")) stored["scene"] = upgraded_scene_params(stored["scene"]);
   // The Landweber series' lift, added since: rows before it ran the series on a square operator (lift none); the
-  // stability kind's `method`, the snapshot closure's `closure.deconvolver` (the reduced kinds: upgraded_reduced_params).
+  // stability kind's `method`, every other kind's `closure.deconvolver` (the reduced kinds apply this first).
   const auto lift = [](json& d) {
     if (d.is_object() && d.value("name", "") == "landweber" && !d.contains("lift")) d["lift"] = "none";
   };

@@ -101,7 +101,7 @@ class ReducedModel : public ExperimentKind {
 
   // Rows stored before reference.file, the transient's one vocabulary (t_star, now t_over_tau), timing.min_seconds.
   json upgraded_params(json stored) const override {
-    return upgraded_reduced_params(with_reference_file_defaults(std::move(stored)));
+    return upgraded_reduced_params(with_reference_file_defaults(ExperimentKind::upgraded_params(std::move(stored))));
   }
 
   json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {

@@ -104,7 +104,9 @@ class ReducedModel2D : public ExperimentKind {
   }
 
   // Rows stored before timing.min_seconds existed.
-  json upgraded_params(json stored) const override { return upgraded_reduced_params(std::move(stored)); }
+  json upgraded_params(json stored) const override {
+    return upgraded_reduced_params(ExperimentKind::upgraded_params(std::move(stored)));
+  }
 
   json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
     const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");

@@ -112,7 +112,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
   // Rows stored before reference.file, timing.min_seconds and the solver's convective flux existed (those ran
   // without it).
   json upgraded_params(json stored) const override {
-    stored = upgraded_reduced_params(with_reference_file_defaults(std::move(stored)));
+    stored = upgraded_reduced_params(with_reference_file_defaults(ExperimentKind::upgraded_params(std::move(stored))));
     if (stored.is_object() && stored.contains("solver") && stored["solver"].is_object() &&
         !stored["solver"].contains("convective_stress")) {
       const ForceDensity2DOptions d;

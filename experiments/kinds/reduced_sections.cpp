@@ -71,7 +71,6 @@ std::vector<double> transient_times(const json& transient, const Scene& scene) {
 
 json upgraded_reduced_params(json params) {
   if (!params.is_object()) return params;
-  if (params.contains("scene")) params["scene"] = upgraded_scene_params(params["scene"]);
   if (params.contains("transient") && params["transient"].is_object() && params["transient"].contains("t_star")) {
     json& t = params["transient"];
     t["t_over_tau"] = t["t_star"];
@@ -79,11 +78,6 @@ json upgraded_reduced_params(json params) {
   }
   if (params.contains("timing") && params["timing"].is_object() && !params["timing"].contains("min_seconds"))
     params["timing"]["min_seconds"] = 0.0;
-  // The Landweber series' lift, added since: the rows before it ran the series on a square operator (lift none).
-  if (params.contains("closure") && params["closure"].is_object() && params["closure"].contains("deconvolver")) {
-    json& d = params["closure"]["deconvolver"];
-    if (d.is_object() && d.value("name", "") == "landweber" && !d.contains("lift")) d["lift"] = "none";
-  }
   return params;
 }
 

@@ -34,9 +34,9 @@ std::string transient_times_key(const json& cell);
 json resolve_transient(const json& cell, const std::string& path);
 // The snapshot model times t = (t / τ) τ of a resolved transient section.
 std::vector<double> transient_times(const json& transient, const Scene& scene);
-// A stored row's resolved parameters as this version resolves them (the reduced kinds' upgraded_params):
-// the scene's (upgraded_scene_params); transient.t_star renamed t_over_tau; timing.min_seconds, added since, set to
-// 0, as those rows were timed; a landweber closure's lift, added since, set to none (the series they ran).
+// What the reduced kinds' upgraded_params add to ExperimentKind::upgraded_params (the scene's and the strategies'
+// upgrades, which they apply first): transient.t_star renamed t_over_tau; timing.min_seconds, added since, set to
+// 0, as those rows were timed.
 json upgraded_reduced_params(json params);
 
 // "timing": how the reduced run is repeated (core/base/repeated_timing.hpp).

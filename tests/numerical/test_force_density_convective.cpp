@@ -97,10 +97,13 @@ TEST(ForceDensityConvective, NothingChangesInStokesFlowAndInertiaLowersThePermea
   // Re ~ 7e-5: the flux is O(Re) of the viscous force, and the symmetry of the square array makes k's change O(Re²).
   const double stokes = k_of(0.01, true) / k_of(0.01, false);
   EXPECT_NEAR(stokes, 1.0, 1e-6);
-  // Re ~ 1: lower, by less than the Forchheimer-like scale Re² ~ 1 would allow (ordered arrays at Re ~ 1: a few %).
+  // Re ~ 1: inertia lowers k by about a percent on an ordered array (PySPH's lattice_cylinders.py, the peer:
+  // 0.59 % between Re 0.1 and 1 at nx = 96, results/peer/cylinders; this model 0.92 % at n = 96,
+  // results/cylinders/reduced_re1): between 0.1 % and 5 % here. A flux of the wrong sign raises k; one missing a
+  // factor of the velocity (linear, not quadratic) leaves it at the Stokes value by the array's symmetry.
   const double ratio = k_of(150.0, true) / k_of(150.0, false);
-  EXPECT_LT(ratio, 1.0 - 1e-4) << ratio;
-  EXPECT_GT(ratio, 0.8) << ratio;
+  EXPECT_LT(ratio, 0.999) << ratio;
+  EXPECT_GT(ratio, 0.95) << ratio;
   std::printf("k with the flux / without: %.9f at Re ~ 7e-5, %.5f at Re ~ 1\n", stokes, ratio);
 }
 

@@ -1,7 +1,10 @@
 #include "core/reduced/averaged_force_map.hpp"
 
 #include <cmath>
+#include <algorithm>
+#include <functional>
 #include <map>
+#include <stdexcept>
 
 #include "core/base/errors.hpp"
 #include "core/sph/sph_engine.hpp"
@@ -16,24 +19,25 @@ namespace {
 // index + 1 (distinct per row); a pair's x-force is affine in v_j − v_k, so the second sweep gives each pair's
 // coefficient c_jk wherever v_j ≠ v_k (pairs within one row never differ in an x-invariant field). The column
 // of row r then collects ±c_jk (w_j − w_k) over the pairs with an end in r, w the members' signed weights.
+// x_weight(a): the x-factor of member a's weight (per unit length in x); row_y(row, first particle): the row's
+// sample point.
 AveragedForceMap probe(const Scene& strip, ParticleSystem& lattice, const AveragingKernel& kernel,
                        const UniformMesh1D& nodes, const std::vector<std::int32_t>& members, double sign,
-                       const std::map<long, std::vector<std::int32_t>>& rows) {
+                       const std::map<long, std::vector<std::int32_t>>& rows, const std::function<double(int)>& x_weight,
+                       const std::function<double(long, int)>& row_y) {
   SphEngine engine(strip, lattice);
-  // ψ(node − q_a) on the column at x = 0, the periodic images in x summed, for the members (signed).
+  // ψ(node − q_a) for the members (signed), its x-factor per unit length.
   std::vector<std::vector<std::pair<int, double>>> weight(lattice.size());
   const double r = kernel.support_radius();
-  const UniformMesh1D x_axis{0.0, strip.box.lx, 1, true, strip.box.lx};
   for (int a : members) {
-    double wx = 0.0;
-    for_nodes_within(x_axis, lattice.x[a], r, [&](int, double d) { wx += kernel.factor(d); });
+    const double wx = x_weight(a);
     for_nodes_within(nodes, lattice.y[a], r, [&](int n, double d) { weight[a].emplace_back(n, sign * wx * kernel.factor(d)); });
   }
   std::vector<int> column(lattice.size(), -1);  // the map column of each fluid particle's row
   AveragedForceMap out;
   for (const auto& [row, ids] : rows) {
     for (int a : ids) column[a] = static_cast<int>(out.rows.size());
-    out.rows.emplace_back(0.0, lattice.y[ids.front()]);
+    out.rows.emplace_back(0.0, row_y(row, ids.front()));
   }
   const std::vector<PairForce> rest = engine.pair_forces();
   out.offset = Eigen::VectorXd::Zero(nodes.count);
@@ -65,6 +69,21 @@ AveragedForceMap probe(const Scene& strip, ParticleSystem& lattice, const Averag
 
 long row_of(double y, double dx) { return std::lround(y / dx - 0.5); }
 
+// On the narrowest strip's lattice: the column at x = 0 with the strip's periodic images in x summed (per unit
+// length: the strip's rows are uniform in x), each row sampled at its particles' y.
+std::function<double(int)> strip_column_weight(const Scene& strip, const ParticleSystem& lattice,
+                                               const AveragingKernel& kernel) {
+  return [&strip, &lattice, &kernel](int a) {
+    const UniformMesh1D x_axis{0.0, strip.box.lx, 1, true, strip.box.lx};
+    double wx = 0.0;
+    for_nodes_within(x_axis, lattice.x[a], kernel.support_radius(), [&](int, double d) { wx += kernel.factor(d); });
+    return wx;
+  };
+}
+std::function<double(long, int)> lattice_row_y(const ParticleSystem& lattice) {
+  return [&lattice](long, int first) { return lattice.y[first]; };
+}
+
 }  // namespace
 
 AveragedForceMap wall_constraint_force_map(const Scene& scene, const AveragingKernel& kernel, const UniformMesh1D& nodes) {
@@ -81,7 +100,8 @@ AveragedForceMap wall_constraint_force_map(const Scene& scene, const AveragingKe
       rows[row_of(y, scene.dx)].push_back(static_cast<std::int32_t>(a));
     }
   }
-  return probe(strip, lattice, kernel, nodes, walls, -1.0, rows);
+  return probe(strip, lattice, kernel, nodes, walls, -1.0, rows, strip_column_weight(strip, lattice, kernel),
+               lattice_row_y(lattice));
 }
 
 AveragedForceMap fluid_force_density_map(const Scene& scene, const AveragingKernel& kernel, const UniformMesh1D& nodes) {
@@ -94,7 +114,29 @@ AveragedForceMap fluid_force_density_map(const Scene& scene, const AveragingKern
       fluid.push_back(static_cast<std::int32_t>(a));
       rows[row_of(lattice.y[a], scene.dx)].push_back(static_cast<std::int32_t>(a));
     }
-  return probe(strip, lattice, kernel, nodes, fluid, 1.0, rows);
+  return probe(strip, lattice, kernel, nodes, fluid, 1.0, rows, strip_column_weight(strip, lattice, kernel),
+               lattice_row_y(lattice));
+}
+
+AveragedForceMap fluid_force_density_map_at(const Scene& scene, const AveragingKernel& kernel, const UniformMesh1D& nodes,
+                                            const ParticleSystem& positions) {
+  if (!scene.x_invariant) throw std::logic_error("fluid_force_density_map_at: the scene is not x-invariant");
+  if (positions.size() != scene.make_particles().size())
+    throw ConfigError("/oracle/positions", "the particle state does not hold the scene's particles");
+  ParticleSystem at = positions;  // the positions only: at rest for the probe
+  std::fill(at.vx.begin(), at.vx.end(), 0.0);
+  std::fill(at.vy.begin(), at.vy.end(), 0.0);
+  std::vector<std::int32_t> fluid;
+  std::map<long, std::vector<std::int32_t>> rows;
+  for (std::size_t a = 0; a < at.size(); ++a)
+    if (!at.fixed[a]) {
+      fluid.push_back(static_cast<std::int32_t>(a));
+      rows[row_of(at.y[a], scene.dx)].push_back(static_cast<std::int32_t>(a));
+    }
+  // The x-average over the box (∫φ = 1): exact for any x-distribution of the particles.
+  const double per_length = 1.0 / scene.box.lx;
+  return probe(scene, at, kernel, nodes, fluid, 1.0, rows, [per_length](int) { return per_length; },
+               [&scene](long row, int) { return (static_cast<double>(row) + 0.5) * scene.dx; });
 }
 
 }  // namespace closurelab

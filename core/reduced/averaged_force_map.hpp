@@ -14,6 +14,7 @@
 
 #include "core/averaging/averaging_kernel.hpp"
 #include "core/base/mesh.hpp"
+#include "core/sph/particles.hpp"
 #include "core/sph/scene.hpp"
 
 namespace closurelab {
@@ -29,5 +30,11 @@ struct AveragedForceMap {
 AveragedForceMap wall_constraint_force_map(const Scene& scene, const AveragingKernel& kernel, const UniformMesh1D& nodes);
 // The force density Σ_F ψ(node − q_a) f_a^x of the fluid particles at `nodes`.
 AveragedForceMap fluid_force_density_map(const Scene& scene, const AveragingKernel& kernel, const UniformMesh1D& nodes);
+// The same map probed on another particle state of the whole box (its positions; the velocities are set aside):
+// e.g. the direct run's final particles, whose rows have slid against each other (the sheared lattice of the
+// error budget's positions oracle). Rows are the particles' nearest lattice rows, sampled at the row's lattice y;
+// the weights are the x-average over the box, φ(y_node − y_a) / l_x, exact for any x-distribution.
+AveragedForceMap fluid_force_density_map_at(const Scene& scene, const AveragingKernel& kernel, const UniformMesh1D& nodes,
+                                            const ParticleSystem& positions);
 
 }  // namespace closurelab

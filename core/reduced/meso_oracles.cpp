@@ -2,6 +2,7 @@
 // (core/reduced/meso_solver.hpp: MesoOracles, MesoSolverOptions::wall_node_value).
 #include <cmath>
 
+#include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
 #include "core/reduced/meso_solver.hpp"
 
@@ -17,6 +18,26 @@ void MesoSolver::set_oracles(MesoOracles oracles) {
     throw ConfigError("/oracle/boundary", "the scene has no walls: there is no boundary to hold");
   if ((oracles.closure || oracles.boundary != BoundaryOracle::none) && oracles.averaged.size() != n)
     throw ConfigError("/oracle", "the averaged direct solution must be given at every coarse node");
+  if (oracles.positions) {
+    if (opt_.balance != MesoBalance::force_density)
+      throw ConfigError("/oracle/positions", "the positions oracle re-probes the force-density balance's map: it needs "
+                                             "solver.balance = force_density");
+    force_density_map_ = fluid_force_density_map_at(scene_, kernel_, coarse_, *oracles.positions);
+    // ρ̄ (2.8) and F̄ (2.14) of those particles as x-averages: on one column per lattice column, averaged over x
+    // (the lattice's own path takes the column at x = 0 of a strip whose rows are uniform in x).
+    AveragingRequest req;
+    req.external = true;
+    const TensorMesh2D columns{UniformMesh1D{0.0, scene_.dx, scene_.nx, true, scene_.box.lx}, coarse_};
+    const MesoFields f = average_particles(*oracles.positions, scene_.box, kernel_, columns, req, {}, scene_.force_x);
+    rho_bar_ = Eigen::VectorXd::Zero(n);
+    Eigen::VectorXd fx = Eigen::VectorXd::Zero(n);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < columns.nx(); ++i) {
+        rho_bar_[j] += f.rho[columns.index(i, j)] / columns.nx();
+        fx[j] += f.fx[columns.index(i, j)] / columns.nx();
+      }
+    accel_force_ = fx.cwiseQuotient(rho_bar_);
+  }
   if (oracles.boundary != BoundaryOracle::none) {
     const double band = oracles.boundary == BoundaryOracle::wall_band ? 3.0 * kernel_.eta() : 0.0;
     for (int k = 0; k < n; ++k) {

@@ -114,6 +114,10 @@ struct MesoOracles {
   // Boundary oracle: "none"; "wall_nodes": the two wall-surface nodes held at v̄_d instead of (5.6);
   // "wall_band": every node within 3η' of a wall surface held at v̄_d.
   BoundaryOracle boundary = BoundaryOracle::none;
+  // Positions oracle (the sheared lattice): the force-density balance's map, ρ̄ and F̄ probed on these particles
+  // (the direct run's final state, whose rows have slid against each other) instead of on the lattice; unset: the
+  // lattice. Only with the force-density balance (ConfigError at /oracle/positions otherwise).
+  std::optional<ParticleSystem> positions;
   Eigen::VectorXd averaged;             // v̄_d at the coarse nodes
   Eigen::VectorXd row_y, row_velocity;  // the fluid lattice rows (ascending y) and V_d there
 };

@@ -34,7 +34,11 @@ ParamSchema oracle_schema() {
                      "closure oracle: reconstruction R(v) + (V_d - R(v_d)) with V_d the direct SPH particle velocity"),
           string_param("boundary", "none", "boundary oracle: hold the wall-surface nodes or the whole wall band at "
                                            "the averaged direct SPH",
-                       names_of<BoundaryOracle>())};
+                       names_of<BoundaryOracle>()),
+          string_param("positions", "lattice",
+                       "the particle positions the force-density balance's map, density and force are probed on: the "
+                       "lattice, or the direct SPH's final particles (direct: the sheared lattice; force_density only)",
+                       {"lattice", "direct"})};
 }
 
 using DirectProfiles = ReferenceProfiles;
@@ -85,6 +89,10 @@ class ReducedModel : public ExperimentKind {
     out["timing"] = resolve_section(cell, "timing", reduced_timing_schema(), path);
     if (uses_oracles(out) && !out["reference"]["direct_sph"].get<bool>())
       throw ConfigError(path + "/oracle", "an oracle needs the direct SPH reference (reference.direct_sph = true)");
+    if (out["oracle"]["positions"] == "direct" && out["solver"]["balance"] != "force_density")
+      throw ConfigError(path + "/oracle/positions",
+                        "the positions oracle re-probes the force-density balance's map: it needs solver.balance = "
+                        "force_density");
     if (out["oracle"]["boundary"] != "none" && !scene->has_walls)
       throw ConfigError(path + "/oracle/boundary", "scene '" + scene->name + "' has no walls");
     check_reference_file(cell, out, *scene, path);  // reference_profiles.hpp
@@ -99,9 +107,13 @@ class ReducedModel : public ExperimentKind {
     return out;
   }
 
-  // Rows stored before reference.file, the transient's one vocabulary (t_star, now t_over_tau), timing.min_seconds.
+  // Rows stored before reference.file, the transient's one vocabulary (t_star, now t_over_tau), timing.min_seconds,
+  // oracle.positions (the lattice, as they ran).
   json upgraded_params(json stored) const override {
-    return upgraded_reduced_params(with_reference_file_defaults(ExperimentKind::upgraded_params(std::move(stored))));
+    json out = upgraded_reduced_params(with_reference_file_defaults(ExperimentKind::upgraded_params(std::move(stored))));
+    if (out.is_object() && out.contains("oracle") && out["oracle"].is_object() && !out["oracle"].contains("positions"))
+      out["oracle"]["positions"] = "lattice";
+    return out;
   }
 
   json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
@@ -131,6 +143,7 @@ class ReducedModel : public ExperimentKind {
       o.averaged = direct->averaged;
       o.row_y = direct->row_y;
       o.row_velocity = direct->row_velocity;
+      if (cfg.at("oracle").at("positions") == "direct") o.positions = direct->particles;
       oracles = o;
     }
     // The reduced run, repeated until its fastest time is stable (timing section): the strategies and the
@@ -243,7 +256,9 @@ class ReducedModel : public ExperimentKind {
                  {"bond_weights", reduced.quadrature_cost.bond_weights}};
 
     if (direct) {
-      const auto& [averaged, run, direct_snapshots, row_y, row_velocity] = *direct;
+      const Eigen::VectorXd& averaged = direct->averaged;
+      const json& run = direct->run;
+      const std::vector<Eigen::VectorXd>& direct_snapshots = direct->snapshots;
       errors["vs_averaged_direct_sph"] = norms(averaged);
       profile["direct_average"] = averaged;
       if (file.empty())
@@ -283,7 +298,8 @@ class ReducedModel : public ExperimentKind {
 
  private:
   static bool uses_oracles(const json& cfg) {
-    return cfg.at("oracle").at("closure").get<bool>() || cfg.at("oracle").at("boundary") != "none";
+    return cfg.at("oracle").at("closure").get<bool>() || cfg.at("oracle").at("boundary") != "none" ||
+           cfg.at("oracle").at("positions") != "lattice";
   }
 
   static MesoSolverOptions options(const json& cfg) {

@@ -40,6 +40,7 @@ ReferenceProfiles reference_profiles(const ParticleSystem& particles, const Scen
     out.row_velocity[i++] = sum.first / sum.second;
   }
   out.averaged = average_on_nodes(particles, scene, kernel, nodes);
+  out.particles = particles;
   return out;
 }
 

@@ -20,6 +20,7 @@ struct ReferenceProfiles {
   json run;                  // the direct run's record (null for a file)
   std::vector<Eigen::VectorXd> snapshots;  // v̄_x at the transient times (direct run only)
   Eigen::VectorXd row_y, row_velocity;     // the final v_x as an x-mean per fluid lattice row
+  ParticleSystem particles;                // the final state (the positions oracle probes on it)
 };
 
 // The kernel-averaged v_x of `particles` at `nodes` (a column: one x cell over the box) and the x-mean v_x per

@@ -69,6 +69,16 @@ AveragedForceMap probe(const Scene& strip, ParticleSystem& lattice, const Averag
 
 long row_of(double y, double dx) { return std::lround(y / dx - 0.5); }
 
+// The particles not held fixed, and each one's nearest lattice row.
+void fluid_rows(const ParticleSystem& ps, double dx, std::vector<std::int32_t>& fluid,
+                std::map<long, std::vector<std::int32_t>>& rows) {
+  for (std::size_t a = 0; a < ps.size(); ++a)
+    if (!ps.fixed[a]) {
+      fluid.push_back(static_cast<std::int32_t>(a));
+      rows[row_of(ps.y[a], dx)].push_back(static_cast<std::int32_t>(a));
+    }
+}
+
 // On the narrowest strip's lattice: the column at x = 0 with the strip's periodic images in x summed (per unit
 // length: the strip's rows are uniform in x), each row sampled at its particles' y.
 std::function<double(int)> strip_column_weight(const Scene& strip, const ParticleSystem& lattice,
@@ -109,11 +119,7 @@ AveragedForceMap fluid_force_density_map(const Scene& scene, const AveragingKern
   ParticleSystem lattice = strip.make_particles();
   std::vector<std::int32_t> fluid;
   std::map<long, std::vector<std::int32_t>> rows;
-  for (std::size_t a = 0; a < lattice.size(); ++a)
-    if (!lattice.fixed[a]) {
-      fluid.push_back(static_cast<std::int32_t>(a));
-      rows[row_of(lattice.y[a], scene.dx)].push_back(static_cast<std::int32_t>(a));
-    }
+  fluid_rows(lattice, scene.dx, fluid, rows);
   return probe(strip, lattice, kernel, nodes, fluid, 1.0, rows, strip_column_weight(strip, lattice, kernel),
                lattice_row_y(lattice));
 }
@@ -128,11 +134,7 @@ AveragedForceMap fluid_force_density_map_at(const Scene& scene, const AveragingK
   std::fill(at.vy.begin(), at.vy.end(), 0.0);
   std::vector<std::int32_t> fluid;
   std::map<long, std::vector<std::int32_t>> rows;
-  for (std::size_t a = 0; a < at.size(); ++a)
-    if (!at.fixed[a]) {
-      fluid.push_back(static_cast<std::int32_t>(a));
-      rows[row_of(at.y[a], scene.dx)].push_back(static_cast<std::int32_t>(a));
-    }
+  fluid_rows(at, scene.dx, fluid, rows);
   // The x-average over the box (∫φ = 1): exact for any x-distribution of the particles.
   const double per_length = 1.0 / scene.box.lx;
   return probe(scene, at, kernel, nodes, fluid, 1.0, rows, [per_length](int) { return per_length; },

@@ -51,7 +51,7 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
   const auto t0 = std::chrono::steady_clock::now();
   check_force_density_2d(scene, kernel, opt_);
   coarse_ = force_density_coarse_mesh(scene, kernel, opt_.spacing_over_eta);
-  recon_ = force_density_reconstruction_mesh(scene, coarse_, opt_.reconstruction_refinement);
+  recon_ = force_density_reconstruction_mesh(scene, coarse_, opt_.reconstruction_refinement, opt_.reconstruction_y_nodes);
   const ParticleSystem lattice = scene.make_particles();
   const std::size_t np = lattice.size();
   const int lnx = scene.nx, lny = scene.ny;

@@ -50,6 +50,16 @@
 
 namespace closurelab {
 
+// Where the reconstruction's nodes lie along a walled y (ForceDensity2DOptions::reconstruction_y_nodes): cell-centred
+// across the whole box (a wall surface on a cell face), or on the wall surfaces and evenly between, at the coarse
+// rows refined, continued into the walls.
+enum class ReconstructionYNodes { cell_centred, on_wall_surfaces };
+template <>
+struct EnumNames<ReconstructionYNodes> {
+  static constexpr std::array<std::pair<ReconstructionYNodes, std::string_view>, 2> table{
+      {{ReconstructionYNodes::cell_centred, "cell_centred"}, {ReconstructionYNodes::on_wall_surfaces, "on_wall_surfaces"}}};
+};
+
 // What a held coarse node reports (ForceDensity2DOptions::held_node_value).
 enum class HeldNodeValue { imposed, reconstructed };
 template <>
@@ -61,6 +71,10 @@ struct EnumNames<HeldNodeValue> {
 struct ForceDensity2DOptions {
   double spacing_over_eta = 1.0;      // Δ / η'
   int reconstruction_refinement = 2;  // the reconstruction mesh's spacing is Δ / this (1: the coarse mesh; 0: the lattice)
+  // Along a walled y (refinement ≥ 1): where the reconstruction's nodes lie. The fluid particles next to a wall read
+  // the wall's pair forces at their own velocity, so the interpolant's error there is amplified by 1/ε' against the
+  // wall shear; with a node on the surface that error is O(ε' Δ_r |u''|), with the surface on a cell face O(Δ_r² |u''|).
+  ReconstructionYNodes reconstruction_y_nodes = ReconstructionYNodes::cell_centred;
   double window_cutoff = 1e-10;       // ψ below this fraction of ψ(0) is dropped from the assembled maps
   // Coarse nodes whose window's fluid mass fraction f = Σ_fluid m ψ / ρ̄ is below this are held: neither evolved nor
   // deconvolution data. Their v̄ is at most f times the largest fluid velocity in the window, and that fluid sits
@@ -87,7 +101,8 @@ ForceDensity2DOptions force_density_2d_options_from(const json& resolved_solver)
 // the coarse one refined (one column stays one), across the whole box in a walled y (ConfigError at
 // /solver/reconstruction_refinement when it is finer than the lattice).
 TensorMesh2D force_density_coarse_mesh(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta);
-TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorMesh2D& coarse, int refinement);
+TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorMesh2D& coarse, int refinement,
+                                               ReconstructionYNodes y_nodes = ReconstructionYNodes::cell_centred);
 // The checks before any work, for validating a spec: the meshes, the lattice's particles on their sites.
 void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, const ForceDensity2DOptions& options);
 

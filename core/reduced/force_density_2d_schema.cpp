@@ -16,6 +16,11 @@ ParamSchema force_density_2d_schema() {
                         "the reconstruction mesh's spacing is Delta / this (1: the coarse mesh; 0: the particle "
                         "lattice's rows and columns, one column for an x-invariant scene)",
                         0, 16),
+          string_param("reconstruction_y_nodes", name_of(d.reconstruction_y_nodes),
+                       "along a walled y (reconstruction_refinement >= 1): the reconstruction's nodes cell-centred "
+                       "across the box (a wall surface on a cell face) or on_wall_surfaces (the coarse rows refined, "
+                       "continued into the walls)",
+                       names_of<ReconstructionYNodes>()),
           number_param("window_cutoff", d.window_cutoff,
                        "window values below this fraction of psi(0) are dropped from the assembled maps", 0.0, 1e-3),
           number_param("hold_fraction", d.hold_fraction,
@@ -39,6 +44,8 @@ ForceDensity2DOptions force_density_2d_options_from(const json& s) {
   ForceDensity2DOptions o;
   o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
   o.reconstruction_refinement = s.at("reconstruction_refinement").get<int>();
+  o.reconstruction_y_nodes = parse_name<ReconstructionYNodes>(s.at("reconstruction_y_nodes").get<std::string>(),
+                                                              "/solver/reconstruction_y_nodes");
   o.window_cutoff = s.at("window_cutoff").get<double>();
   o.hold_fraction = s.at("hold_fraction").get<double>();
   o.held_node_value = parse_name<HeldNodeValue>(s.at("held_node_value").get<std::string>(), "/solver/held_node_value");
@@ -75,11 +82,25 @@ TensorMesh2D force_density_coarse_mesh(const Scene& scene, const AveragingKernel
   return {x, wall_to_wall_nodes(scene, target)};
 }
 
-TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorMesh2D& coarse, int refinement) {
+TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorMesh2D& coarse, int refinement,
+                                               ReconstructionYNodes y_nodes) {
   // x: the coarse columns refined (one column stays one: an x-invariant reconstruction); y: periodic, the coarse
-  // rows refined; walled, cell-centred across the whole box (walls included) at the coarse spacing / refinement.
+  // rows refined; walled, across the whole box (walls included) at the coarse spacing / refinement, cell-centred or
+  // on the coarse rows (so on both wall surfaces) and continued at that spacing into the walls.
   // Refinement 0: the lattice's own columns and rows (the particles read their own node).
   const bool lattice = refinement == 0;
+  if (!lattice && !scene.box.periodic_y && y_nodes == ReconstructionYNodes::on_wall_surfaces) {
+    const int nx = coarse.nx() == 1 ? 1 : coarse.nx() * refinement;
+    const double s = coarse.y.spacing / refinement;
+    const int below = static_cast<int>(std::floor(coarse.y.origin / s + 1e-9));  // nodes inside the lower wall
+    const double origin = coarse.y.origin - below * s;
+    const int ny = static_cast<int>(std::floor((scene.box.ly - origin) / s + 1e-9)) + 1;
+    if (nx > scene.nx || s < scene.dx)
+      throw ConfigError("/solver/reconstruction_refinement",
+                        "the reconstruction mesh (spacing " + std::to_string(s) + ") is finer than the particle "
+                        "lattice (" + std::to_string(scene.dx) + "); lower the refinement");
+    return {UniformMesh1D::cell_centred(0.0, scene.box.lx, nx, true), UniformMesh1D{origin, s, ny, false, 0.0}};
+  }
   const int nx = coarse.nx() == 1 ? 1 : lattice ? scene.nx : coarse.nx() * refinement;
   const int ny = lattice              ? scene.ny
                  : scene.box.periodic_y ? coarse.ny() * refinement
@@ -95,7 +116,7 @@ TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorM
 
 void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, const ForceDensity2DOptions& o) {
   const TensorMesh2D coarse = force_density_coarse_mesh(scene, kernel, o.spacing_over_eta);
-  force_density_reconstruction_mesh(scene, coarse, o.reconstruction_refinement);
+  force_density_reconstruction_mesh(scene, coarse, o.reconstruction_refinement, o.reconstruction_y_nodes);
   // The pressure is linearised about the lattice with one dP/dn for every pair, which a van der Waals equation of
   // state with its own cross-phase attraction (7.1) does not have; in an x-invariant flow the density deviation stays
   // uniform (ṅ cancels pair by pair along each row), so the pressure's linearisation is never used there.

@@ -109,8 +109,8 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     return out;
   }
 
-  // Rows stored before reference.file, timing.min_seconds and the solver's convective flux existed (those ran
-  // without it).
+  // Rows stored before reference.file, timing.min_seconds, the solver's convective flux and reconstruction_y_nodes
+  // existed (those ran without the flux, on cell-centred reconstruction rows).
   json upgraded_params(json stored) const override {
     stored = upgraded_reduced_params(with_reference_file_defaults(ExperimentKind::upgraded_params(std::move(stored))));
     if (stored.is_object() && stored.contains("solver") && stored["solver"].is_object() &&
@@ -120,6 +120,9 @@ class ReducedModelForceDensity2D : public ExperimentKind {
       stored["solver"]["newton_tolerance"] = d.newton_tolerance;
       stored["solver"]["newton_max_iterations"] = d.newton_max_iterations;
     }
+    if (stored.is_object() && stored.contains("solver") && stored["solver"].is_object() &&
+        !stored["solver"].contains("reconstruction_y_nodes"))
+      stored["solver"]["reconstruction_y_nodes"] = name_of(ReconstructionYNodes::cell_centred);
     return stored;
   }
 

@@ -179,11 +179,42 @@ Channel make_cylinder_channel(const json& extra = json::object()) {
 
 }  // namespace
 
-TEST(ForceDensityWalls, CylinderChannelMapsAreTheEngineAccelerationsAndDensityRate) {
+// The reconstruction's rows along the walled y: cell-centred (the default) or on the wall surfaces.
+ForceDensity2DOptions y_nodes_options(const std::string& y_nodes) {
+  return force_density_2d_options_from(
+      resolve_params(json{{"reconstruction_y_nodes", y_nodes}}, force_density_2d_schema(), "/solver", {}));
+}
+
+class CylinderChannelYNodes : public ::testing::TestWithParam<std::string> {};
+INSTANTIATE_TEST_SUITE_P(ForceDensityWalls, CylinderChannelYNodes, ::testing::Values("cell_centred", "on_wall_surfaces"));
+
+TEST(ForceDensityWalls, ReconstructionRowsOnTheWallSurfaces) {
+  // The coarse rows refined and continued into the walls: a node on each wall surface, the box covered, and the
+  // first fluid row reading the surface node and the one above it (no solid between them).
   Channel c = make_cylinder_channel();
   auto dv = tikhonov(1e-6), dn = tikhonov(1e-6);
-  ForceDensitySolver2D solver(*c.scene, *c.kernel, *dv, *dn, force_density_2d_options_from(resolve_params(
-                                                                   json::object(), force_density_2d_schema(), "/solver", {})));
+  ForceDensitySolver2D solver(*c.scene, *c.kernel, *dv, *dn, y_nodes_options("on_wall_surfaces"));
+  const UniformMesh1D& y = solver.reconstruction_mesh().y, &coarse = solver.coarse_mesh().y;
+  EXPECT_NEAR(y.spacing, 0.5 * coarse.spacing, 1e-14);
+  const auto has_node_at = [&](double q) {
+    for (int k = 0; k < y.count; ++k)
+      if (std::abs(y.node(k) - q) < 1e-12) return true;
+    return false;
+  };
+  EXPECT_TRUE(has_node_at(c.scene->wall_lo));
+  EXPECT_TRUE(has_node_at(c.scene->wall_hi));
+  EXPECT_LE(y.node(0), c.scene->dx);
+  EXPECT_GE(y.node(y.count - 1), c.scene->box.ly - y.spacing - c.scene->dx);
+  // The default keeps the wall surface on a cell face.
+  ForceDensitySolver2D centred(*c.scene, *c.kernel, *dv, *dn, y_nodes_options("cell_centred"));
+  const UniformMesh1D& yc = centred.reconstruction_mesh().y;
+  for (int k = 0; k < yc.count; ++k) EXPECT_GT(std::abs(yc.node(k) - c.scene->wall_lo), 0.25 * yc.spacing);
+}
+
+TEST_P(CylinderChannelYNodes, MapsAreTheEngineAccelerationsAndDensityRate) {
+  Channel c = make_cylinder_channel();
+  auto dv = tikhonov(1e-6), dn = tikhonov(1e-6);
+  ForceDensitySolver2D solver(*c.scene, *c.kernel, *dv, *dn, y_nodes_options(GetParam()));
   ASSERT_GT(solver.coarse_mesh().nx(), 1);
   EXPECT_FALSE(solver.coarse_mesh().y.periodic);
   const Eigen::Index nr = solver.reconstruction_mesh().size();
@@ -225,11 +256,10 @@ TEST(ForceDensityWalls, CylinderChannelMapsAreTheEngineAccelerationsAndDensityRa
   EXPECT_LT(max_abs(mn - ref_n), 1e-6 * max_abs(ref_n));
 }
 
-TEST(ForceDensityWalls, CylinderChannelSteadySolveZeroesTheRates) {
+TEST_P(CylinderChannelYNodes, SteadySolveZeroesTheRates) {
   Channel c = make_cylinder_channel();
   auto dv = tikhonov(1e-6), dn = tikhonov(1e-6);
-  ForceDensitySolver2D solver(*c.scene, *c.kernel, *dv, *dn, force_density_2d_options_from(resolve_params(
-                                                                   json::object(), force_density_2d_schema(), "/solver", {})));
+  ForceDensitySolver2D solver(*c.scene, *c.kernel, *dv, *dn, y_nodes_options(GetParam()));
   const ForceDensity2DResult r = solver.run();
   ASSERT_EQ(r.status, Status::converged) << r.message;
   solver.set_state(r.vx, r.vy, r.density);

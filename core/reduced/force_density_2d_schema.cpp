@@ -18,8 +18,9 @@ ParamSchema force_density_2d_schema() {
                         0, 16),
           string_param("reconstruction_y_nodes", name_of(d.reconstruction_y_nodes),
                        "along a walled y (reconstruction_refinement >= 1): the reconstruction's nodes cell-centred "
-                       "across the box (a wall surface on a cell face) or on_wall_surfaces (the coarse rows refined, "
-                       "continued into the walls)",
+                       "across the box (a wall surface on a cell face), on_wall_surfaces (the coarse rows refined, "
+                       "continued into the walls) or lattice_rows (the particle lattice's rows, the columns still "
+                       "Delta / refinement)",
                        names_of<ReconstructionYNodes>()),
           number_param("window_cutoff", d.window_cutoff,
                        "window values below this fraction of psi(0) are dropped from the assembled maps", 0.0, 1e-3),
@@ -86,7 +87,8 @@ TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorM
                                                ReconstructionYNodes y_nodes) {
   // x: the coarse columns refined (one column stays one: an x-invariant reconstruction); y: periodic, the coarse
   // rows refined; walled, across the whole box (walls included) at the coarse spacing / refinement, cell-centred or
-  // on the coarse rows (so on both wall surfaces) and continued at that spacing into the walls.
+  // on the coarse rows (so on both wall surfaces) and continued at that spacing into the walls, or on the lattice's
+  // rows.
   // Refinement 0: the lattice's own columns and rows (the particles read their own node).
   const bool lattice = refinement == 0;
   if (!lattice && !scene.box.periodic_y && y_nodes == ReconstructionYNodes::on_wall_surfaces) {
@@ -101,8 +103,9 @@ TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorM
                         "lattice (" + std::to_string(scene.dx) + "); lower the refinement");
     return {UniformMesh1D::cell_centred(0.0, scene.box.lx, nx, true), UniformMesh1D{origin, s, ny, false, 0.0}};
   }
+  const bool lattice_rows = !scene.box.periodic_y && y_nodes == ReconstructionYNodes::lattice_rows;
   const int nx = coarse.nx() == 1 ? 1 : lattice ? scene.nx : coarse.nx() * refinement;
-  const int ny = lattice              ? scene.ny
+  const int ny = lattice || lattice_rows ? scene.ny
                  : scene.box.periodic_y ? coarse.ny() * refinement
                                         : static_cast<int>(std::lround(scene.box.ly * refinement / coarse.y.spacing));
   if (nx > scene.nx || ny > scene.ny)

@@ -10,11 +10,14 @@
 //             Cholesky/LU of A + α C per α.
 //   sparse    least_squares: Eigen's SparseQR (COLAMD) of the stacked [A; √α L] per α; paper: CHOLMOD (symbolic
 //             analysis once) or SparseLU of A + α C.
-//   dual      least_squares with C = I and a fixed α: x = Aᵀ (AAᵀ + αI)⁻¹ b, Eigen's Cholesky of the m × m matrix
+//   dual      least_squares with a fixed α: C = I, x = Aᵀ (AAᵀ + αI)⁻¹ b, Eigen's Cholesky of the m × m matrix
 //             (m the data size) once at setup: for a wide A (m ≪ n: the 2D force-density model's coarse data on a
 //             finer reconstruction) a setup of O(m² n) instead of the SVD's, whose condition is 1 + ‖A‖²/α (the
 //             square of the stacked system's): refused as a numerical issue where its reciprocal estimate falls
-//             below 1e-11 (x then carries relative errors up to ~1e-5); rules need the spectral backend.
+//             below 1e-11 (x then carries relative errors up to ~1e-5); a first difference L (each row one link),
+//             x = G Aᵀ y + N z from the m × m system A G Aᵀ + αI bordered by L's null space N, G the grounded
+//             (LᵀL)⁻¹ by CHOLMOD (DualDifferenceSystem): O(m n) memory instead of the standard form's n²; rules need
+//             the spectral backend.
 //   auto      spectral for a dense or Kronecker A in the least-squares form (and for the paper form with C = I on a
 //             symmetric A), else dense or sparse as A is stored.
 // The least-squares solves never square the condition number of A (DESIGN.md §6); with rule fixed the stacked QR is
@@ -71,6 +74,7 @@ class Tikhonov : public DeconvolverBase {
     fixed_qr_.reset();
     std_form_.reset();
     dual_.reset();
+    dual_difference_.reset();
     if (backend_ == Backend::dual) return setup_dual(a);
     if (backend_ == Backend::automatic) {
       if (a.storage() != OperatorStorage::sparse && (paper_ ? order_ == 0 && symmetric_ : true))
@@ -124,7 +128,7 @@ class Tikhonov : public DeconvolverBase {
     const double alpha = fixed_alpha();
     std::string issue;
     if (backend_ == Backend::dual) {
-      r.x = dual_solution(b, issue);
+      r.x = dual_solution(b, issue).col(0);
       r.cost.matvecs = 1;
     } else if (backend_ == Backend::spectral) {
       if (std_form_) {
@@ -149,9 +153,8 @@ class Tikhonov : public DeconvolverBase {
     const double alpha = fixed_alpha();
     out.parameter = alpha;
     if (backend_ == Backend::dual) {
-      out.x = dual_->solve_columns(*dual_a_, b);
+      out.x = dual_solution(b, out.issue);
       out.matvecs_per_column = 1;
-      out.issue = dual_->issue();
     } else if (backend_ == Backend::spectral && !std_form_) {
       Eigen::MatrixXd c = basis_.coefficients(b);
       Eigen::VectorXd phi(c.rows());
@@ -285,15 +288,26 @@ class Tikhonov : public DeconvolverBase {
   }
   void setup_dual(const ForwardOperator& a) {
     if (paper_) throw ConfigError("/backend", "backend dual serves the least_squares form");
-    if (order_ != 0) throw ConfigError("/backend", "backend dual serves regularizer identity (C = I)");
+    if (order_ == 2)
+      throw ConfigError("/backend", "backend dual serves regularizer identity or a first difference; use backend spectral");
     if (rule().rule != ParameterRule::fixed)
       throw ConfigError("/backend", "backend dual serves a fixed alpha (rule fixed); the rules need backend spectral");
     if (a.storage() != OperatorStorage::dense) a_dense_ = a.to_dense();
     dual_a_ = a.storage() == OperatorStorage::dense ? &a.dense() : &a_dense_;  // a outlives the instance
+    if (order_ != 0) {
+      const double norm = a.norm2_estimate();
+      scale_ = norm * norm;
+      dual_difference_ = std::make_unique<DualDifferenceSystem>(*dual_a_, regularizer_operator(a, order_), fixed_alpha());
+      return;
+    }
     dual_ = std::make_unique<DualSystem>(*dual_a_, fixed_alpha());
     scale_ = dual_->norm2_squared();
   }
-  Eigen::VectorXd dual_solution(const Eigen::VectorXd& b, std::string& issue) const {
+  Eigen::MatrixXd dual_solution(const Eigen::MatrixXd& b, std::string& issue) const {
+    if (dual_difference_) {
+      issue = dual_difference_->issue();
+      return dual_difference_->solve_columns(b);
+    }
     issue = dual_->issue();
     return dual_->solve_columns(*dual_a_, b);
   }
@@ -397,7 +411,8 @@ class Tikhonov : public DeconvolverBase {
   SpMat a_sparse_;                          // sparse least_squares: A for the stacked QR
   Eigen::MatrixXd a_dense_, l_dense_;
   std::unique_ptr<StackedQr> fixed_qr_;     // the fixed α's factorization (rule fixed)
-  std::unique_ptr<DualSystem> dual_;        // backend dual: the factor of AAᵀ + αI
+  std::unique_ptr<DualSystem> dual_;        // backend dual, C = I: the factor of AAᵀ + αI
+  std::unique_ptr<DualDifferenceSystem> dual_difference_;  // backend dual, a first difference L
   const Eigen::MatrixXd* dual_a_ = nullptr;  // backend dual: A (the operator's own dense storage, or a_dense_)
   SpMat c_, g_sparse_;                      // paper form: C and A
   Eigen::MatrixXd g_dense_, c_dense_;
@@ -422,8 +437,8 @@ ParamSchema tikhonov_schema() {
                        "a difference L, least_squares only: standard form + SVD, the generalized SVD); dense: QR of "
                        "[A; sqrt(alpha) L] per alpha (paper: Cholesky/LU of A + alpha C); sparse: the same by Eigen's "
                        "SparseQR (paper: CHOLMOD/SparseLU); dual: x = A'(AA' + alpha I)^-1 b by Cholesky once (least_squares, "
-                       "C = I, rule fixed; for a wide A; condition 1 + ||A||^2/alpha, a numerical issue below a "
-                       "reciprocal 1e-11); auto: spectral unless A is sparse or the paper form has a difference C or a "
+                       "rule fixed; for a wide A; condition 1 + ||A||^2/alpha, a numerical issue below a reciprocal "
+                       "1e-11; a first difference L: x = G A'y + N z, G the grounded (L'L)^-1 by CHOLMOD, N null(L)); auto: spectral unless A is sparse or the paper form has a difference C or a "
                        "non-symmetric A",
                        {"auto", "spectral", "dense", "sparse", "dual"}),
           number_param("alpha_max", 1.0, "largest alpha scanned by the rules, relative to ||A||^2 (||A|| paper form)", 0.0, {}, true),

@@ -179,14 +179,14 @@ Channel make_cylinder_channel(const json& extra = json::object()) {
 
 }  // namespace
 
-// The reconstruction's rows along the walled y: cell-centred (the default) or on the wall surfaces.
+// The reconstruction's rows along the walled y: cell-centred (the default), on the wall surfaces or the lattice's.
 ForceDensity2DOptions y_nodes_options(const std::string& y_nodes) {
   return force_density_2d_options_from(
       resolve_params(json{{"reconstruction_y_nodes", y_nodes}}, force_density_2d_schema(), "/solver", {}));
 }
 
 class CylinderChannelYNodes : public ::testing::TestWithParam<std::string> {};
-INSTANTIATE_TEST_SUITE_P(ForceDensityWalls, CylinderChannelYNodes, ::testing::Values("cell_centred", "on_wall_surfaces"));
+INSTANTIATE_TEST_SUITE_P(ForceDensityWalls, CylinderChannelYNodes, ::testing::Values("cell_centred", "on_wall_surfaces", "lattice_rows"));
 
 TEST(ForceDensityWalls, ReconstructionRowsOnTheWallSurfaces) {
   // The coarse rows refined and continued into the walls: a node on each wall surface, the box covered, and the
@@ -209,6 +209,16 @@ TEST(ForceDensityWalls, ReconstructionRowsOnTheWallSurfaces) {
   ForceDensitySolver2D centred(*c.scene, *c.kernel, *dv, *dn, y_nodes_options("cell_centred"));
   const UniformMesh1D& yc = centred.reconstruction_mesh().y;
   for (int k = 0; k < yc.count; ++k) EXPECT_GT(std::abs(yc.node(k) - c.scene->wall_lo), 0.25 * yc.spacing);
+  // lattice_rows: one row per lattice row (the particles' own y), the columns still the coarse ones refined.
+  ForceDensitySolver2D rows(*c.scene, *c.kernel, *dv, *dn, y_nodes_options("lattice_rows"));
+  const TensorMesh2D& r = rows.reconstruction_mesh();
+  EXPECT_EQ(r.ny(), c.scene->ny);
+  EXPECT_EQ(r.nx(), 2 * solver.coarse_mesh().nx());
+  const ParticleSystem particles = c.scene->make_particles();
+  for (const double py : particles.y) {
+    const double k = std::round((py - r.y.node(0)) / r.y.spacing);
+    EXPECT_NEAR(r.y.node(0) + k * r.y.spacing, py, 1e-12);
+  }
 }
 
 TEST_P(CylinderChannelYNodes, MapsAreTheEngineAccelerationsAndDensityRate) {

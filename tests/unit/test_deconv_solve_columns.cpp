@@ -3,7 +3,8 @@
 // the strategies that batch (Tikhonov spectral and dual) and for the default (Landweber), also on a badly scaled
 // column, which falls back to one solve per column; the dual backend equals the spectral one within its condition
 // number times the unit roundoff on a wide coarse–fine Gaussian operator (the 2D force-density model's shape); it
-// refuses what it cannot serve (a rule, the paper form, a difference regularizer) at /backend, and an α that makes
+// equals the stacked QR with a first-difference regularizer (with and without a null space); it refuses what it
+// cannot serve (a rule, the paper form, a second difference) at /backend, and an α that makes
 // its m × m system singular to ~1e-5 is a numerical issue, never `converged`.
 #include <gtest/gtest.h>
 
@@ -106,6 +107,59 @@ TEST(TikhonovDual, EqualsTheSpectralBackendWithinItsCondition) {
   }
 }
 
+namespace {
+
+// A wide random operator (6 data, 12 unknowns) whose links (ForwardOperator::difference_links) are two chains:
+// unknowns 0–5 with a link from 0 to a known zero (anchored: L has no null space there), 6–11 with none (free: its
+// constant lies in null(L)), weighted unevenly.
+ForwardOperator two_chains() {
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(6, 12);
+  for (Eigen::Index i = 0; i < 6; ++i)
+    for (Eigen::Index j = 0; j < 12; ++j) m(i, j) = std::exp(-0.1 * static_cast<double>((2 * i - j) * (2 * i - j))) + 0.01 * std::sin(static_cast<double>(i + 3 * j));
+  ForwardOperator a = ForwardOperator::from_dense(m);
+  std::vector<Eigen::Triplet<double>> t{{0, 0, 1.5}};
+  int row = 1;
+  for (int j = 0; j + 1 < 12; ++j) {
+    if (j == 5) continue;
+    const double w = 1.0 + 0.3 * j;
+    t.emplace_back(row, j, -w);
+    t.emplace_back(row, j + 1, w);
+    ++row;
+  }
+  Eigen::SparseMatrix<double> l(row, 12);
+  l.setFromTriplets(t.begin(), t.end());
+  a.difference_links = l;
+  return a;
+}
+
+}  // namespace
+
+// The dual backend with a first difference L (x = G Aᵀ y + N z, the bordered dual system) against the stacked QR of
+// [A; √α L] (backend dense), the least-squares problem solved without the dual's squared condition: a 1D first
+// difference (null space: the constants), the zero-end difference (none) and links with one free and one anchored
+// component. Both solve the same normal equations; the dual's condition is ~1 + ‖A G^{1/2}‖²/α, so at α/‖A‖² ≥
+// 1e-6 they agree to 1e-8.
+TEST(TikhonovDual, WithAFirstDifferenceEqualsTheStackedQr) {
+  const ForwardOperator gaussian = wide_gaussian(), chains = two_chains();
+  for (const auto& [a, regularizer] : {std::pair{&gaussian, "first_difference"}, std::pair{&gaussian, "first_difference_zero_ends"},
+                                        std::pair{&chains, "first_difference_zero_ends"}}) {
+    const Eigen::VectorXd b = data_columns(a->rows()).col(3) + 0.2 * data_columns(a->rows()).col(0);
+    for (const double rel : {1e-2, 1e-6}) {
+      const double alpha = rel * a->norm2_estimate() * a->norm2_estimate();
+      SCOPED_TRACE(std::string(regularizer) + " alpha/||A||^2 = " + std::to_string(rel));
+      const json method = {{"name", "tikhonov"}, {"alpha", alpha}, {"regularizer", regularizer}};
+      json dense = method, dual = method;
+      dense["backend"] = "dense";
+      dual["backend"] = "dual";
+      const DeconvolutionResult ref = bound(dense, *a)->solve(b), r = bound(dual, *a)->solve(b);
+      ASSERT_EQ(r.status, DeconvolutionStatus::converged) << r.stats.message;
+      EXPECT_LE((r.x - ref.x).norm(), 1e-8 * ref.x.norm());
+    }
+  }
+  expect_columns_match_solves({{"name", "tikhonov"}, {"alpha", 1e-6}, {"backend", "dual"}, {"regularizer", "first_difference_zero_ends"}},
+                              chains);
+}
+
 TEST(TikhonovDual, RefusesWhatItCannotServe) {
   const ForwardOperator a = wide_gaussian();
   const auto path_of = [&](const json& method) {
@@ -117,7 +171,7 @@ TEST(TikhonovDual, RefusesWhatItCannotServe) {
     return std::string("(accepted)");
   };
   EXPECT_EQ(path_of({{"name", "tikhonov"}, {"backend", "dual"}, {"rule", "gcv"}}), "/backend");
-  EXPECT_EQ(path_of({{"name", "tikhonov"}, {"backend", "dual"}, {"regularizer", "first_difference"}}), "/backend");
+  EXPECT_EQ(path_of({{"name", "tikhonov"}, {"backend", "dual"}, {"regularizer", "second_difference"}}), "/backend");
   const ForwardOperator square = ForwardOperator::from_dense(Eigen::MatrixXd::Identity(4, 4));
   try {
     bound({{"name", "tikhonov"}, {"backend", "dual"}, {"form", "paper"}}, square);

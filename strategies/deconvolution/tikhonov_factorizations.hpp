@@ -222,8 +222,6 @@ class DualDifferenceSystem {
                "regularizer leaves free (A N is rank-deficient); use backend spectral";
   }
   const std::string& issue() const { return issue_; }
-  // Null space dimension of L (the free components).
-  Eigen::Index null_dimension() const { return null_.cols(); }
   Eigen::MatrixXd solve_columns(const Eigen::MatrixXd& b) const {
     if (g_at_.size() == 0 || llt_.info() != Eigen::Success) return Eigen::MatrixXd::Zero(null_.rows(), b.cols());
     Eigen::MatrixXd t = llt_.solve(b);

@@ -15,13 +15,4 @@ void register_builtin_strategies(Registry& r) {
   register_scenes(r);
 }
 
-const Registry& builtin_registry() {
-  static const Registry registry = [] {
-    Registry r;
-    register_builtin_strategies(r);
-    return r;
-  }();
-  return registry;
-}
-
 }  // namespace closurelab

@@ -4,6 +4,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -97,6 +98,47 @@ class Family : public FamilyBase {
   std::map<std::string, Item> entries_;
 };
 
+// A family of named, stateless objects held whole, in the order registered (the experiment kinds: each has
+// name(); `closurelab list experiment` prints them with their sections). As for a Family, a name is registered once:
+// a second registration is a std::logic_error naming it.
+template <class T>
+class InstanceFamily {
+ public:
+  explicit InstanceFamily(std::string name) : name_(std::move(name)) {}
+  void add(std::shared_ptr<const T> item) {
+    if (!item) throw std::logic_error("registry: " + name_ + " needs an object");
+    const std::string key = item->name();
+    if (contains(key)) throw std::logic_error("registry: " + name_ + " '" + key + "' is registered twice");
+    items_.push_back(std::move(item));
+  }
+  bool contains(const std::string& name) const {
+    for (const auto& item : items_)
+      if (item->name() == name) return true;
+    return false;
+  }
+  // The entry called `name`; ConfigError at `path` naming every known entry otherwise.
+  const T& get(const std::string& name, const std::string& path) const {
+    for (const auto& item : items_)
+      if (item->name() == name) return *item;
+    throw ConfigError(path, "unknown " + name_ + " '" + name + "'; known: " + known_names());
+  }
+  std::vector<const T*> all() const {
+    std::vector<const T*> v;
+    for (const auto& item : items_) v.push_back(item.get());
+    return v;
+  }
+  const std::string& family_name() const { return name_; }
+  std::string known_names() const {
+    std::string s;
+    for (const auto& item : items_) s += (s.empty() ? "" : ", ") + item->name();
+    return s;
+  }
+
+ private:
+  std::string name_;
+  std::vector<std::shared_ptr<const T>> items_;
+};
+
 class AveragingKernel;
 class Deconvolver;
 class StressQuadrature;
@@ -108,11 +150,13 @@ struct Registry {
   Family<Deconvolver> deconvolvers{"deconvolver"};
   Family<StressQuadrature> quadratures{"quadrature"};
   Family<Scene> scenes{"scene"};
-  // Experiment kinds beyond the built-ins, added by a user's registration hook with add_experiment_kind
-  // (experiments/kinds/experiment_kind.hpp; an experiment kind is a stateless object, held here whole). The
-  // runner finds a kind here or among the built-ins (find_experiment_kind with the registry).
-  std::vector<std::shared_ptr<const ExperimentKind>> experiment_kinds;
+  // The experiment kinds (experiments/kinds/experiment_kind.hpp): the built-ins by register_builtin_experiments
+  // (experiments/kinds/experiment_kinds.cpp), then a user's, added by a registration hook with
+  // `registry.experiments.add(...)`. The runner finds every cell's kind here.
+  InstanceFamily<ExperimentKind> experiments{"experiment kind"};
 
+  // The strategy and scene families (parameter schemas; `closurelab list` prints the experiment kinds apart, with
+  // their sections).
   std::vector<const FamilyBase*> families() const { return {&kernels, &deconvolvers, &quadratures, &scenes}; }
 };
 
@@ -120,7 +164,12 @@ struct Registry {
 // registry that already holds the built-ins is left as it is.
 void register_builtin_strategies(Registry& registry);
 
-// A process-wide registry of the built-ins (tests, benchmarks); the command line builds its own (closurelab_main).
+// Fills `registry` with every built-in experiment kind (experiments/kinds/experiment_kinds.cpp, in the closurelab_runner
+// library). Idempotent, as register_builtin_strategies.
+void register_builtin_experiments(Registry& registry);
+
+// A process-wide registry of every built-in strategy, scene and experiment kind (tests, benchmarks; defined with the
+// experiment kinds); the command line builds its own (closurelab_main), the user's entries after the built-ins.
 const Registry& builtin_registry();
 
 }  // namespace closurelab

@@ -49,18 +49,10 @@ class ExperimentKind {
   virtual json upgraded_params(json stored) const;
 };
 
-// The built-in experiment kinds (experiments/kinds/experiment_kinds.cpp lists them explicitly).
-const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds();
-// A built-in kind by name; ConfigError at `path` naming the known kinds otherwise.
-const ExperimentKind& find_experiment_kind(const std::string& name, const std::string& path);
-
-// A user's experiment kind, from a registration hook (experiments/runner/closurelab_main.hpp): `run`, `list`
-// and `merge` then know it like a built-in. A name that a built-in or an earlier entry has is a
-// std::logic_error naming it (as for the strategy families).
-void add_experiment_kind(Registry& registry, std::unique_ptr<ExperimentKind> kind);
-// Every kind `registry` knows: the built-ins, then the user's in the order added.
-std::vector<const ExperimentKind*> known_experiment_kinds(const Registry& registry);
-// A kind of `registry` (the user's) or a built-in, by name; ConfigError at `path` naming every known kind.
-const ExperimentKind& find_experiment_kind(const Registry& registry, const std::string& name, const std::string& path);
+// The experiment kinds are a registry family (core/base/registry.hpp: Registry::experiments): the built-ins are
+// registered by register_builtin_experiments (experiments/kinds/experiment_kinds.cpp lists them explicitly), a user's
+// by `registry.experiments.add(std::make_unique<MyKind>())` in a registration hook
+// (experiments/runner/closurelab_main.hpp); `run`, `list` and `merge` then know it like a built-in. A kind is found by
+// `registry.experiments.get(name, path)` (ConfigError at `path` naming every known kind).
 
 }  // namespace closurelab

@@ -1,6 +1,4 @@
-#include <stdexcept>
-
-#include "core/base/errors.hpp"
+#include "core/base/registry.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/kinds/quadrature_convergence.hpp"
 #include "experiments/kinds/reduced_model.hpp"
@@ -11,19 +9,25 @@
 
 namespace closurelab {
 
-const std::vector<std::unique_ptr<ExperimentKind>>& experiment_kinds() {
-  static const std::vector<std::unique_ptr<ExperimentKind>> kinds = [] {
-    std::vector<std::unique_ptr<ExperimentKind>> k;
-    k.push_back(make_sph_validation_experiment());
-    k.push_back(make_stability_experiment());
-    k.push_back(make_quadrature_convergence_experiment());
-    k.push_back(make_reduced_model_any_geometry_experiment());  // "reduced_model": the three below by "model"
-    k.push_back(make_reduced_model_2d_experiment());
-    k.push_back(make_reduced_model_force_density_2d_experiment());
-    k.push_back(make_snapshot_closure_experiment());
-    return k;
+void register_builtin_experiments(Registry& r) {
+  if (r.experiments.contains("reduced_model")) return;  // already registered
+  r.experiments.add(make_sph_validation_experiment());
+  r.experiments.add(make_stability_experiment());
+  r.experiments.add(make_quadrature_convergence_experiment());
+  r.experiments.add(make_reduced_model_any_geometry_experiment());  // "reduced_model": the three below by "model"
+  r.experiments.add(make_reduced_model_2d_experiment());
+  r.experiments.add(make_reduced_model_force_density_2d_experiment());
+  r.experiments.add(make_snapshot_closure_experiment());
+}
+
+const Registry& builtin_registry() {
+  static const Registry registry = [] {
+    Registry r;
+    register_builtin_strategies(r);
+    register_builtin_experiments(r);
+    return r;
   }();
-  return kinds;
+  return registry;
 }
 
 json ExperimentKind::upgraded_params(json stored) const {
@@ -48,45 +52,6 @@ double ExperimentKind::expected_cost(const json& resolved) const {
   const double n_y = positive(scene, "n_y");
   const bool to_time = solver.is_object() && solver.value("mode", "") == "target_time";
   return n_y * n_y * n_y * positive(solver, to_time ? "target_time" : "max_time");
-}
-
-namespace {
-
-const ExperimentKind& find_among(const std::vector<const ExperimentKind*>& kinds, const std::string& name,
-                                 const std::string& path) {
-  std::string known;
-  for (const ExperimentKind* k : kinds) {
-    if (k->name() == name) return *k;
-    known += (known.empty() ? "" : ", ") + k->name();
-  }
-  throw ConfigError(path, "unknown experiment kind '" + name + "'; known: " + known);
-}
-
-}  // namespace
-
-const ExperimentKind& find_experiment_kind(const std::string& name, const std::string& path) {
-  std::vector<const ExperimentKind*> builtins;
-  for (const auto& k : experiment_kinds()) builtins.push_back(k.get());
-  return find_among(builtins, name, path);
-}
-
-void add_experiment_kind(Registry& registry, std::unique_ptr<ExperimentKind> kind) {
-  if (!kind) throw std::logic_error("registry: add_experiment_kind needs a kind");
-  for (const ExperimentKind* k : known_experiment_kinds(registry))
-    if (k->name() == kind->name())
-      throw std::logic_error("registry: experiment '" + kind->name() + "' is registered twice");
-  registry.experiment_kinds.push_back(std::move(kind));
-}
-
-std::vector<const ExperimentKind*> known_experiment_kinds(const Registry& registry) {
-  std::vector<const ExperimentKind*> kinds;
-  for (const auto& k : experiment_kinds()) kinds.push_back(k.get());
-  for (const auto& k : registry.experiment_kinds) kinds.push_back(k.get());
-  return kinds;
-}
-
-const ExperimentKind& find_experiment_kind(const Registry& registry, const std::string& name, const std::string& path) {
-  return find_among(known_experiment_kinds(registry), name, path);
 }
 
 }  // namespace closurelab

@@ -34,7 +34,7 @@ json compute_cell(const CellTask& task, const Registry& registry, json provenanc
   const auto t0 = std::chrono::steady_clock::now();
   json row;
   try {
-    const ExperimentKind& kind = find_experiment_kind(registry, task.at("kind").get<std::string>(), "/kind");
+    const ExperimentKind& kind = registry.experiments.get(task.at("kind").get<std::string>(), "/kind");
     row = kind.run(resolved, registry, [&](const std::string& line) { log_line(tag + "(" + label + ") " + line); });
   } catch (const std::exception& e) {
     row = {{"status", "error"}, {"error", e.what()}, {"errors", json::object()}, {"cost", json::object()}};

@@ -114,7 +114,7 @@ int list_command(int argc, char** argv, const Registry& reg) {
   if (want.empty() || want == "experiment") {
     any = true;
     std::cout << "experiment:\n";
-    for (const ExperimentKind* k : known_experiment_kinds(reg)) {
+    for (const ExperimentKind* k : reg.experiments.all()) {
       std::cout << "  " << k->name() << " - " << k->description() << "\n";
       for (const auto& s : k->sections()) {
         std::cout << "      " << s.key << ": " << s.description;
@@ -185,6 +185,7 @@ int closurelab_main(int argc, char** argv, const UserRegistration& register_user
     // std::logic_error naming it, exit 1).
     Registry registry;
     register_builtin_strategies(registry);
+    register_builtin_experiments(registry);
     if (register_user) register_user(registry);
     if (argc < 2) {
       top_usage(std::cerr, registry);

@@ -187,7 +187,7 @@ std::optional<ValidMatrix> validate_matrix(const json& spec, const Registry& reg
   ValidMatrix m;
   try {
     m.cells = expand_matrix(spec);
-    m.kind = &find_experiment_kind(registry, spec["kind"].get<std::string>(), "/kind");
+    m.kind = &registry.experiments.get(spec["kind"].get<std::string>(), "/kind");
   } catch (const ConfigError& e) {
     std::cerr << "error: invalid experiment spec: " << e.what() << "\n";
     return std::nullopt;

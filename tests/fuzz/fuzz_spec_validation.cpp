@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const json spec = parse_json_guarded(std::string(reinterpret_cast<const char*>(data), size), "fuzz");
     const auto cells = expand_matrix(spec);
     if (cells.size() > 64) return 0;  // validating thousands of cells is slow, not wrong
-    const ExperimentKind& kind = find_experiment_kind(spec.at("kind").get<std::string>(), "/kind");
+    const ExperimentKind& kind = builtin_registry().experiments.get(spec.at("kind").get<std::string>(), "/kind");
     for (const auto& c : cells) kind.resolve(c.config, c.path, builtin_registry());
   } catch (const ConfigError&) {
   }

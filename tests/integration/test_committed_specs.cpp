@@ -38,7 +38,7 @@ TEST_P(CommittedSpec, Validates) {
     const json spec = read_json_file(file);
     const std::vector<MatrixCell> cells = expand_matrix(spec);
     ASSERT_FALSE(cells.empty());
-    const ExperimentKind& kind = find_experiment_kind(spec.at("kind").get<std::string>(), "/kind");
+    const ExperimentKind& kind = builtin_registry().experiments.get(spec.at("kind").get<std::string>(), "/kind");
     for (const auto& c : cells) {
       SCOPED_TRACE(c.label);
       const json r = kind.resolve(c.config, c.path, builtin_registry());

@@ -89,7 +89,7 @@ const std::map<std::string, TinyCell>& tiny_cells() {
 
 std::vector<std::string> registered_kinds() {
   std::vector<std::string> names;
-  for (const auto& k : experiment_kinds()) names.push_back(k->name());
+  for (const ExperimentKind* k : builtin_registry().experiments.all()) names.push_back(k->name());
   return names;
 }
 
@@ -155,7 +155,7 @@ TEST_P(EveryKind, TinyCellRunsEndToEndWithFiniteErrors) {
   // The runner's keys, and every section of the kind's schema resolved into the echoed parameters.
   for (const char* key : {"id", "label", "params", "provenance", "errors", "cost", "status"})
     EXPECT_TRUE(row.contains(key)) << key;
-  for (const auto& section : find_experiment_kind(kind, "/kind").sections()) {
+  for (const auto& section : builtin_registry().experiments.get(kind, "/kind").sections()) {
     std::string keys = section.key;  // "a, b, c" lists several top-level keys
     for (std::size_t start = 0; start <= keys.size();) {
       const std::size_t end = std::min(keys.find(", ", start), keys.size());

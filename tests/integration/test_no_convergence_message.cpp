@@ -7,7 +7,7 @@
 using namespace closurelab;
 
 TEST(RowMessages, DirectSphThatStopsAtMaxTimeSaysWhy) {
-  const ExperimentKind& kind = find_experiment_kind("direct_sph_validation", "/kind");
+  const ExperimentKind& kind = builtin_registry().experiments.get("direct_sph_validation", "/kind");
   const json cell = {{"scene", {{"name", "poiseuille-uniform"}, {"n_y", 16}}}, {"solver", {{"max_time", 1e-4}}}};
   const json resolved = kind.resolve(cell, "/base", builtin_registry());
   const json row = kind.run(resolved, builtin_registry(), [](const std::string&) {});

@@ -33,8 +33,8 @@ std::string path_of(const std::function<void()>& f) {
 
 TEST(ReducedModelModels, TheSceneChoosesTheModelAndTheCellResolvesAsThatKindResolvesIt) {
   const Registry& reg = builtin_registry();
-  const ExperimentKind& any = find_experiment_kind("reduced_model", "");
-  const ExperimentKind& fd = find_experiment_kind("reduced_model_2d_force_density", "");
+  const ExperimentKind& any = builtin_registry().experiments.get("reduced_model", "");
+  const ExperimentKind& fd = builtin_registry().experiments.get("reduced_model_2d_force_density", "");
   const json resolved = any.resolve(kCylinders, "", reg);
   EXPECT_EQ(resolved, fd.resolve(kCylinders, "", reg));
   EXPECT_FALSE(resolved.contains("model"));
@@ -45,7 +45,7 @@ TEST(ReducedModelModels, TheSceneChoosesTheModelAndTheCellResolvesAsThatKindReso
 
 TEST(ReducedModelModels, ANamedModelRunsAChannelInTwoDimensionsAndIsKeptInTheCell) {
   const Registry& reg = builtin_registry();
-  const ExperimentKind& any = find_experiment_kind("reduced_model", "");
+  const ExperimentKind& any = builtin_registry().experiments.get("reduced_model", "");
   json cell = kChannel;
   cell["model"] = "force_density_2d";
   const json resolved = any.resolve(cell, "", reg);
@@ -65,7 +65,7 @@ TEST(ReducedModelModels, ANamedModelRunsAChannelInTwoDimensionsAndIsKeptInTheCel
 
 TEST(ReducedModelModels, BadModelsAreRefusedAtTheirPath) {
   const Registry& reg = builtin_registry();
-  const ExperimentKind& any = find_experiment_kind("reduced_model", "");
+  const ExperimentKind& any = builtin_registry().experiments.get("reduced_model", "");
   json cell = kChannel;
   cell["model"] = "spectral";
   EXPECT_EQ(path_of([&] { any.resolve(cell, "/base", reg); }), "/base/model");

@@ -21,7 +21,7 @@ json channel_cell(const json& transient) {
   return cell;
 }
 
-const ExperimentKind& reduced_model() { return find_experiment_kind("reduced_model", "/kind"); }
+const ExperimentKind& reduced_model() { return builtin_registry().experiments.get("reduced_model", "/kind"); }
 
 }  // namespace
 

@@ -101,7 +101,7 @@ class EchoKind : public ExperimentKind {
   }
 };
 
-void register_echo(Registry& r) { add_experiment_kind(r, std::make_unique<EchoKind>()); }
+void register_echo(Registry& r) { r.experiments.add(std::make_unique<EchoKind>()); }
 
 }  // namespace
 
@@ -125,7 +125,7 @@ TEST(UserRegistration, AUsersExperimentKindIsListedAndRuns) {
   struct Clash : EchoKind {
     std::string name() const override { return "reduced_model"; }
   };
-  const Captured twice = run_main({"list"}, [](Registry& r) { add_experiment_kind(r, std::make_unique<Clash>()); });
+  const Captured twice = run_main({"list"}, [](Registry& r) { r.experiments.add(std::make_unique<Clash>()); });
   EXPECT_EQ(twice.rc, 1);
-  EXPECT_NE(twice.err.find("experiment 'reduced_model' is registered twice"), std::string::npos) << twice.err;
+  EXPECT_NE(twice.err.find("experiment kind 'reduced_model' is registered twice"), std::string::npos) << twice.err;
 }

@@ -17,7 +17,7 @@ namespace {
 
 json run_cell(const json& cell) {
   const Registry& reg = builtin_registry();
-  const ExperimentKind& kind = find_experiment_kind("reduced_model", "");
+  const ExperimentKind& kind = builtin_registry().experiments.get("reduced_model", "");
   return kind.run(kind.resolve(cell, "", reg), reg, [](const std::string&) {});
 }
 

@@ -29,7 +29,7 @@ json run_cell(const json& changes, double eta = 1.0 / 16) {
   if (changes.contains("closure") && changes["closure"].contains("deconvolver"))
     cell["closure"]["deconvolver"] = changes["closure"]["deconvolver"];  // replaced, not merged
   if (changes.contains("quadrature")) cell["quadrature"] = changes["quadrature"];
-  const ExperimentKind& kind = find_experiment_kind("reduced_model", "");
+  const ExperimentKind& kind = builtin_registry().experiments.get("reduced_model", "");
   const json cfg = kind.resolve(cell, "", reg);
   return kind.run(cfg, reg, [](const std::string&) {});
 }

@@ -29,7 +29,7 @@ TEST(CellScheduling, CostliestFirstOnlyWhenSeveralRunAtOnce) {
 }
 
 TEST(CellScheduling, DefaultExpectedCostGrowsWithResolutionAndModelTime) {
-  const ExperimentKind& kind = find_experiment_kind("direct_sph_validation", "/kind");
+  const ExperimentKind& kind = builtin_registry().experiments.get("direct_sph_validation", "/kind");
   auto cost = [&](int n_y, const json& solver) {
     return kind.expected_cost({{"scene", {{"n_y", n_y}}}, {"solver", solver}});
   };

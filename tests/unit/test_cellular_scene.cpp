@@ -171,7 +171,7 @@ TEST(CellularScene, KindsThatNeedAnXInvariantSceneRefuseIt) {
     json c = cell;
     c.update(more);
     try {
-      find_experiment_kind(kind, "/kind").resolve(c, "", builtin_registry());
+      builtin_registry().experiments.get(kind, "/kind").resolve(c, "", builtin_registry());
     } catch (const ConfigError& e) {
       return e.path();
     }

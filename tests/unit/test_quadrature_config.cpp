@@ -116,7 +116,7 @@ TEST(QuadratureConfig, MisuseIsReportedNotIgnored) {
 
 TEST(QuadratureConfig, ExperimentCellWithABadRGridFailsBeforeRunning) {
   const Registry& r = builtin_registry();
-  const ExperimentKind& kind = find_experiment_kind("quadrature_convergence", "/kind");
+  const ExperimentKind& kind = builtin_registry().experiments.get("quadrature_convergence", "/kind");
   const json cell = {{"scene", {{"name", "poiseuille-uniform"}, {"n_y", 48}}},
                      {"quadrature", {{"name", "coarse"}, {"stride_y", 5}}}};
   EXPECT_EQ(config_error([&] { kind.resolve(cell, "/cells/0", r); }).path(), "/cells/0/quadrature/stride_y");

@@ -7,6 +7,7 @@
 
 #include "core/averaging/averaging.hpp"
 #include "core/sph/engine_version.hpp"
+#include "experiments/kinds/reference_profiles.hpp"
 
 namespace closurelab {
 
@@ -89,6 +90,23 @@ StoredReference stored_direct_reference(const ReferenceRequest& request, const S
   });
   ref.run["reference_store"] = ref.store;
   return ref;
+}
+
+std::optional<CellReference> cell_reference(const json& cfg, const Scene& scene, const AveragingKernel& kernel,
+                                            double observe_spacing, const std::vector<double>& snapshot_times,
+                                            const std::function<void(const std::string&)>& progress) {
+  const json& section = cfg.at("reference");
+  const std::string file = section.value("file", "");
+  if (!file.empty()) {
+    if (progress) progress("reading the reference '" + file + "'");
+    ReferenceFile f = read_reference_file(scene, file, section.at("step").get<int>(), "/reference/file");
+    return CellReference{std::move(f.particles), {}, std::move(f.record), true};
+  }
+  if (!section.at("direct_sph").get<bool>()) return std::nullopt;
+  const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), section.at("solver"), observe_spacing,
+                                 snapshot_times};
+  StoredReference stored = stored_direct_reference(request, scene, kernel, progress);
+  return CellReference{std::move(stored.particles), std::move(stored.snapshots), std::move(stored.run), false};
 }
 
 }  // namespace closurelab

@@ -3,6 +3,7 @@
 // velocity on a column mesh) or to a target time; shared by the validation and reduced-model experiments
 // through the persistent reference store (experiments/kinds/reference_store.hpp).
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,5 +45,24 @@ json reference_key(const ReferenceRequest& request);
 StoredReference stored_direct_reference(const ReferenceRequest& request, const Scene& scene,
                                         const AveragingKernel& kernel,
                                         const std::function<void(const std::string&)>& progress);
+
+// The reference a reduced-model cell is scored against, from its resolved `reference` section: a particle file in
+// place of the direct run (reference.file at reference.step, read and checked against the scene by
+// read_reference_file, reference_profiles.hpp), else the direct SPH run from the store (reference.direct_sph, its
+// solver section, `observe_spacing` (absolute) and the snapshot times). One place for every reduced model.
+struct CellReference {
+  ParticleSystem particles;                 // the final state
+  std::vector<ParticleSnapshot> snapshots;  // at the requested times, in order (a direct run only; it may end before some)
+  json record;                              // the direct run's record, or the file's
+  bool from_file = false;
+  // The row's record of the reference: "direct_sph" for a run, "reference_file" for a file.
+  void record_into(json& row) const { row[from_file ? "reference_file" : "direct_sph"] = record; }
+  // The direct run whose time the speed-up divides; null for a file (no direct run was timed).
+  const json* timed_run() const { return from_file ? nullptr : &record; }
+};
+// None when the cell asks for neither (reference.direct_sph false, no file).
+std::optional<CellReference> cell_reference(const json& cfg, const Scene& scene, const AveragingKernel& kernel,
+                                            double observe_spacing, const std::vector<double>& snapshot_times,
+                                            const std::function<void(const std::string&)>& progress);
 
 }  // namespace closurelab

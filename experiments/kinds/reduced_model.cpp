@@ -123,17 +123,16 @@ class ReducedModel : public ExperimentKind {
     opt.progress = progress;
     opt.snapshot_times = transient_times(cfg.at("transient"), *scene);
     // The direct reference first: the oracles need it before the reduced run.
+    // A file's particles are averaged as a run's final state is; the run's snapshots at the transient's times.
+    const double observe = cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene->eta;
+    const std::optional<CellReference> ref =
+        cell_reference(cfg, *scene, *kernel, column_mesh(scene->box, observe).y.spacing, opt.snapshot_times, progress);
     std::optional<DirectProfiles> direct;
-    json reference_file;  // the file's record when the reference is read from one
-    const std::string file = cfg.at("reference").at("file").get<std::string>();
-    const auto nodes = [&] { return reduced_grid(*scene, *kernel, opt).coarse.nodes(); };
-    if (!file.empty()) {  // a particle file in place of the direct run, averaged as its final state is
-      progress("reading the reference '" + file + "'");
-      ReferenceFile f = read_reference_file(*scene, file, cfg.at("reference").at("step").get<int>(), "/reference/file");
-      direct = reference_profiles(f.particles, *scene, *kernel, nodes());
-      reference_file = std::move(f.record);
-    } else if (cfg.at("reference").at("direct_sph").get<bool>()) {
-      direct = direct_reference(cfg, *scene, *kernel, nodes(), progress);
+    if (ref) {
+      const Eigen::VectorXd nodes = reduced_grid(*scene, *kernel, opt).coarse.nodes();
+      direct = reference_profiles(ref->particles, *scene, *kernel, nodes);
+      if (!ref->from_file) direct->run = ref->record;
+      for (const auto& snap : ref->snapshots) direct->snapshots.push_back(average_on_nodes(snap.particles, *scene, *kernel, nodes));
     }
     std::optional<MesoOracles> oracles;
     if (uses_oracles(cfg)) {
@@ -261,10 +260,7 @@ class ReducedModel : public ExperimentKind {
       const std::vector<Eigen::VectorXd>& direct_snapshots = direct->snapshots;
       errors["vs_averaged_direct_sph"] = norms(averaged);
       profile["direct_average"] = averaged;
-      if (file.empty())
-        row["direct_sph"] = run;
-      else
-        row["reference_file"] = reference_file;
+      ref->record_into(row);
       // The transient: both runs at the same model times t = (t / τ) τ.
       json transient = json::array();
       const json& t_over_tau = cfg.at("transient").at("t_over_tau");
@@ -290,8 +286,8 @@ class ReducedModel : public ExperimentKind {
       if (!t_over_tau.empty()) row["transient"] = transient;
     }
     finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, reduced.deconvolution_issues,
-                       direct && file.empty() ? &direct->run : nullptr);
-    if (!file.empty()) mark_untimed_reference(row);  // no direct run was timed: no speed-up (null, not 0)
+                       ref ? ref->timed_run() : nullptr);
+    if (ref && ref->from_file) mark_untimed_reference(row);  // no direct run was timed: no speed-up (null, not 0)
     row["profile"] = profile;
     return row;
   }
@@ -307,21 +303,6 @@ class ReducedModel : public ExperimentKind {
     o.discretization = parse_discretization(cfg.at("closure").at("discretization").get<std::string>(), "/closure/discretization");
     o.noise_level = cfg.at("closure").at("noise_level").get<double>();
     return o;
-  }
-
-  // The averaged direct SPH velocity at `nodes` (final state and each snapshot), the direct run's record, and
-  // the final particle velocity as an x-mean per fluid lattice row.
-  static DirectProfiles direct_reference(const json& cfg, const Scene& scene,
-                                                           const AveragingKernel& kernel, const Eigen::VectorXd& nodes,
-                                                           const ProgressFn& progress) {
-    const double spacing = cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene.eta;
-    const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("reference").at("solver"),
-                                   column_mesh(scene.box, spacing).y.spacing, transient_times(cfg.at("transient"), scene)};
-    const StoredReference c = stored_direct_reference(request, scene, kernel, progress);
-    DirectProfiles out = reference_profiles(c.particles, scene, kernel, nodes);
-    out.run = c.run;
-    for (const auto& snap : c.snapshots) out.snapshots.push_back(average_on_nodes(snap.particles, scene, kernel, nodes));
-    return out;
   }
 };
 

@@ -117,13 +117,9 @@ class ReducedModel2D : public ExperimentKind {
     opt.progress = progress;
     opt.snapshot_times = transient_times(cfg.at("transient"), *scene);
 
-    std::optional<StoredReference> direct;
-    if (cfg.at("reference").at("direct_sph").get<bool>()) {
-      const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("reference").at("solver"),
-                                     cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene->eta,
-                                     opt.snapshot_times};
-      direct = stored_direct_reference(request, *scene, *kernel, progress);
-    }
+    const std::optional<CellReference> direct =
+        cell_reference(cfg, *scene, *kernel, cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene->eta,
+                       opt.snapshot_times, progress);
     // The reduced run, repeated until its fastest time is stable (timing section), strategies and solver built
     // anew each time; every run must give the same numbers as the first.
     std::vector<std::pair<double, Field>> reduced_snapshots;
@@ -212,13 +208,13 @@ class ReducedModel2D : public ExperimentKind {
         return Field{f.vx, f.vy};
       };
       const Field direct_field = average_of(direct->particles);
-      const double direct_time = direct->run.at("time").get<double>();
+      const double direct_time = direct->record.at("time").get<double>();
       errors["vs_averaged_direct_sph"] = norms(reduced_field, direct_field, scale);
       // The reference's own error: the averaged direct SPH against the averaged exact field at its final time.
       errors["direct_sph_vs_averaged_analytic"] =
           norms(direct_field, mode_field(mesh, k, e * mode.amplitude(direct_time)), scale);
       fields["direct_average"] = field_json(direct_field);
-      row["direct_sph"] = direct->run;
+      direct->record_into(row);
       json transient = json::array();
       for (std::size_t s = 0; s < opt.snapshot_times.size(); ++s) {
         const double t = opt.snapshot_times[s];
@@ -241,7 +237,7 @@ class ReducedModel2D : public ExperimentKind {
       if (!transient.empty()) row["transient"] = transient;
     }
     finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, reduced.deconvolution_issues,
-                       direct ? &direct->run : nullptr);
+                       direct ? direct->timed_run() : nullptr);
     row["fields"] = fields;
     return row;
   }

@@ -130,18 +130,9 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
     const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
     const ForceDensity2DOptions opt = options(cfg);
-    std::optional<StoredReference> direct;
-    std::optional<ReferenceFile> from_file;  // reference.file in place of the direct run
-    const std::string file = cfg.at("reference").at("file").get<std::string>();
-    if (!file.empty()) {
-      progress("reading the reference '" + file + "'");
-      from_file = read_reference_file(*scene, file, cfg.at("reference").at("step").get<int>(), "/reference/file");
-    } else if (cfg.at("reference").at("direct_sph").get<bool>()) {
-      const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("reference").at("solver"),
-                                     cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene->eta,
-                                     {}};
-      direct = stored_direct_reference(request, *scene, *kernel, progress);
-    }
+    const std::optional<CellReference> ref =
+        cell_reference(cfg, *scene, *kernel, cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene->eta,
+                       {}, progress);
     ForceDensity2DResult reduced;
     bool repeats_identical = true;
     int run_count = 0;
@@ -214,7 +205,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     row["reduced_model"] = reduced.to_json();
     if (two_pass) row["reduced_model"]["two_pass_rule"] = two_pass_record;
     // The reference's particles, the direct run's final state or the file's, averaged and scored alike.
-    const ParticleSystem* reference = direct ? &direct->particles : from_file ? &from_file->particles : nullptr;
+    const ParticleSystem* reference = ref ? &ref->particles : nullptr;
     if (reference) {
       const MesoFields f = average_particles(*reference, scene->box, *kernel, mesh, AveragingRequest{});
       const Field direct_field{f.vx, f.vy};
@@ -222,10 +213,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
       errors["vs_averaged_direct_sph"] = norms(reduced_field, direct_field, outside, scale);
       errors["scale_peak_speed_of_averaged_direct_sph"] = scale;
       fields["direct_average"] = field_json(direct_field);
-      if (direct)
-        row["direct_sph"] = direct->run;
-      else
-        row["reference_file"] = from_file->record;
+      ref->record_into(row);
       if (k_reduced) {
         const double k_direct = darcy_permeability(*scene, *reference);
         const double to_k = mu / (scene->rho0 * scene->permeability->body_force);
@@ -249,8 +237,8 @@ class ReducedModelForceDensity2D : public ExperimentKind {
       cost["newton_last_relative_step"] = reduced.newton_last_step;
     }
     finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, reduced.deconvolution_issues,
-                       direct ? &direct->run : nullptr);
-    if (from_file) mark_untimed_reference(row);  // no direct run was timed: no speed-up (null, not 0)
+                       ref ? ref->timed_run() : nullptr);
+    if (ref && ref->from_file) mark_untimed_reference(row);  // no direct run was timed: no speed-up (null, not 0)
     row["fields"] = fields;
     return row;
   }

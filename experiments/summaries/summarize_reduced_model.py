@@ -7,7 +7,7 @@ writes OUT_PREFIX.md and OUT_PREFIX.png. Every number is read from the table.
 import json
 import sys
 
-from summary_util import figure_label, fmt, get, load_table, pyplot_or_none
+from summary_util import figure_label, fmt, get, load_table, pct, pyplot_or_none, spct
 
 
 def main(path, prefix):
@@ -16,7 +16,7 @@ def main(path, prefix):
     lines = [f"# {table['experiment']}\n", f"{table['description']}\n",
              f"From `{path}`; commit `{prov['git_commit']}`, {prov['compiler']}, {prov['build_type']}, "
              f"{prov['threads']} thread(s), {prov['date_utc']}; command `{prov['command']}`; complete: {table['complete']}.\n",
-             "Max errors over the coarse nodes, relative to the analytic peak: *all nodes* (every node the model reports, "
+             "Max errors over the coarse nodes, in % of the analytic peak: *all nodes* (every node the model reports, "
              "wall-surface nodes included: the headline), *fluid nodes* (without the wall-surface nodes), *interior* "
              "(nodes at least 3 eta' from the walls); *peak*: the paper's metric (max v_reduced - max v_ref) / max v_ref. "
              "*reduced s*: the reduced model's run; *setup s*: building its operators, factorizations and quadrature "
@@ -30,19 +30,22 @@ def main(path, prefix):
         e, c = r.get("errors", {}), r.get("cost", {})
         timing = c.get("reduced_timing") or {}
         lines.append(
-            f"| {r['label']} | {r['status']} | {fmt(get(e, 'vs_analytic', 'all_nodes', 'max_rel'))} | "
-            f"{fmt(get(e, 'vs_analytic', 'fluid_nodes', 'max_rel'))} | "
-            f"{fmt(get(e, 'vs_analytic', 'interior', 'max_rel'))} | {fmt(get(e, 'vs_analytic', 'peak_relative_difference'))} | "
-            f"{fmt(get(e, 'vs_averaged_analytic', 'all_nodes', 'max_rel'))} | {fmt(get(e, 'vs_averaged_direct_sph', 'all_nodes', 'max_rel'))} | "
-            f"{fmt(get(e, 'vs_averaged_direct_sph', 'fluid_nodes', 'max_rel'))} | "
-            f"{fmt(get(e, 'vs_averaged_direct_sph', 'peak_relative_difference'))} | {fmt(c.get('steps'))} | {fmt(c.get('dt'))} | "
+            f"| {r['label']} | {r['status']} | {pct(get(e, 'vs_analytic', 'all_nodes', 'max_rel'))} | "
+            f"{pct(get(e, 'vs_analytic', 'fluid_nodes', 'max_rel'))} | "
+            f"{pct(get(e, 'vs_analytic', 'interior', 'max_rel'))} | {spct(get(e, 'vs_analytic', 'peak_relative_difference'))} | "
+            f"{pct(get(e, 'vs_averaged_analytic', 'all_nodes', 'max_rel'))} | {pct(get(e, 'vs_averaged_direct_sph', 'all_nodes', 'max_rel'))} | "
+            f"{pct(get(e, 'vs_averaged_direct_sph', 'fluid_nodes', 'max_rel'))} | "
+            f"{spct(get(e, 'vs_averaged_direct_sph', 'peak_relative_difference'))} | {fmt(c.get('steps'))} | {fmt(c.get('dt'))} | "
             f"{fmt(c.get('wall_seconds'))} | {fmt(c.get('setup_seconds'))} | {fmt(timing.get('repeats', 1))} | "
-            f"{fmt(timing.get('spread'))} | {fmt(c.get('direct_sph_wall_seconds'))} | {fmt(c.get('speed_up'))} |")
+            f"{pct(timing.get('spread'))} | {fmt(c.get('direct_sph_wall_seconds'))} | {fmt(c.get('speed_up'))} |")
     open(prefix + ".md", "w").write("\n".join(lines) + "\n")
     plt = pyplot_or_none()
     if plt is None:
         return
     rows = [r for r in table["rows"] if "profile" in r]
+    if not rows:  # every row failed, or the rows are a 2D model's (summarize.py routes those to their own views)
+        print(f"summary: no row of {path} has a profile: no figure drawn", file=sys.stderr)
+        return
     ncols = min(4, max(1, len(rows)))
     nrows = (len(rows) + ncols - 1) // ncols
     # Each cell: its profiles above, |v_reduced - v_ref| / peak against y (log scale) below.

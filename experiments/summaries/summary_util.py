@@ -14,6 +14,20 @@ def fmt(x, digits=3):
     return f"{x:.{digits}g}"
 
 
+def pct(x, digits=3):
+    """A fraction as a percentage cell: '-' for missing, else 100 x to `digits` significant digits and ' %'."""
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "-"
+    return f"{100.0 * x:.{digits}g} %"
+
+
+def spct(x, digits=3):
+    """A signed fraction (a relative difference) as a percentage cell, the sign always shown."""
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "-"
+    return f"{100.0 * x:+.{digits}g} %"
+
+
 def get(d, *keys):
     """d[k1][k2]..., or None where a key is missing."""
     for k in keys:

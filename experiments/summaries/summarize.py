@@ -31,9 +31,8 @@ Views (the summarize_*.py files beside this one, kept importable and runnable on
   reduced_model_2d_force_density                   summarize_force_density_2d  table -> summary.md, summary_fields.png
   direct_sph_validation  cylinder scenes           ../cylinders/table       table  -> summary.md (permeability)
   snapshot_closure                                 summarize_snapshot_closure  table -> summary.md, summary.png
-Every number is read from the tables. Errors are printed in % by the reduced-model views (the column's table and
-front, both 2D models, snapshot_closure) and the error budget; the validation, stability and appendix views still
-print fractions. The paths written are printed, one a line ("summarize: wrote PATH").
+Every number is read from the tables. Errors are printed in % (relative differences with their sign) by every view;
+Appendix B's stresses are in model units. The paths written are printed, one a line ("summarize: wrote PATH").
 """
 import contextlib
 import json

@@ -2,6 +2,7 @@
 """summarize.py works for every kind and reduced model: on one committed table per kind (and per reduced model and
 view) it exits 0 into a temporary folder, prints the paths it wrote, and those are the expected Markdown and figures,
 each a non-empty file; the force-density view's table carries the permeability (cylinder lattice) and % errors.
+Then it exits 0 on every committed table under results/, each alone (the Markdown).
 snapshot_closure has no committed table: a small one with that kind's row layout
 (experiments/kinds/snapshot_closure.cpp) is written here.
 
@@ -70,6 +71,25 @@ def snapshot_closure_table(path):
         json.dump(table, f)
 
 
+def committed_tables():
+    """Every results table under results/ (a JSON object with a "rows" list; a run's cells/ folders left out)."""
+    found = []
+    for folder, dirs, files in os.walk(os.path.join(ROOT, "results")):
+        dirs[:] = sorted(d for d in dirs if d != "cells")
+        for name in sorted(files):
+            if not name.endswith(".json"):
+                continue
+            path = os.path.join(folder, name)
+            try:
+                with open(path) as f:
+                    table = json.load(f)
+            except (OSError, ValueError):
+                continue
+            if isinstance(table, dict) and isinstance(table.get("rows"), list):
+                found.append(path)
+    return found
+
+
 def main():
     try:
         import matplotlib  # noqa: F401
@@ -108,6 +128,14 @@ def main():
                 for t in texts:
                     if t not in text:
                         failures.append(f"{what}: {os.path.basename(md)} does not hold '{t}'")
+        # Then every committed table (the Markdown: figures are checked above, one table per view), each alone.
+        for path in committed_tables():
+            out = os.path.join(tmp, "all", os.path.relpath(path, ROOT).replace(os.sep, "_").removesuffix(".json"))
+            r = subprocess.run([sys.executable, SUMMARIZE, "--no-figures", path, out], capture_output=True, text=True,
+                               cwd=ROOT)
+            runs += 1
+            if r.returncode != 0 or "summarize: wrote " not in r.stdout:
+                failures.append(f"{os.path.relpath(path, ROOT)}: exit {r.returncode}: {r.stderr.strip()[-400:]}")
     for f in failures:
         print("test_summarize_every_kind: " + f, file=sys.stderr)
     print(f"test_summarize_every_kind: {runs} summaries, {len(failures)} failure(s)"

@@ -31,6 +31,8 @@ Views (the summarize_*.py files beside this one, kept importable and runnable on
   reduced_model_2d_force_density                   summarize_force_density_2d  table -> summary.md, summary_fields.png
   direct_sph_validation  cylinder scenes           ../cylinders/table       table  -> summary.md (permeability)
   snapshot_closure                                 summarize_snapshot_closure  table -> summary.md, summary.png
+A table whose spec sweeps a scalar key (`axes`) also gets OUT_DIR/summary_sweep.png (SUMMARY_sweep.png): the error
+against each swept key, one line per cell (sweep_figure.py); not with --view or --no-figures.
 Every number is read from the tables. Errors are printed in % (relative differences with their sign) by every view;
 Appendix B's stresses are in model units. The paths written are printed, one a line ("summarize: wrote PATH").
 """
@@ -145,6 +147,11 @@ def main(argv):
     if not tables or len(rest) > 1:
         print("usage: summarize.py TABLE.json [MORE.json ...] [OUT_DIR]", file=sys.stderr)
         return 2
+    missing = [t for t in tables if not os.path.isfile(t)]
+    if missing:
+        print(f"summarize: no such table: {', '.join(missing)} (arguments ending in .json are tables; an output "
+              "folder must not end in .json)", file=sys.stderr)
+        return 2
     with open(tables[0]) as f:
         first = json.load(f)
     script, contract, target = forced or view_of(first)
@@ -160,9 +167,27 @@ def main(argv):
         run_view(script, [tables[0], os.path.join(out_dir, target)])
     else:
         run_view(script, tables + [out_dir])
+    if forced is None and os.environ.get("CLOSURELAB_FIGURES") != "off":
+        sweep_figure_of(first, out_dir, os.path.splitext(target)[0] or "summary")
     for path in sorted(p for p, stamp in files_in(out_dir).items() if before.get(p) != stamp):
         print(f"summarize: wrote {path}")
     return 0
+
+
+def sweep_figure_of(table, out_dir, stem):
+    """OUT_DIR/<stem>_sweep.png: the error against each swept key of the (first) table (sweep_figure.py), where its
+    spec sweeps a scalar key."""
+    sys.path.insert(0, HERE)
+    try:
+        import sweep_figure
+        from summary_util import pyplot_or_none
+        if not sweep_figure.sweeps(table):
+            return
+        plt = pyplot_or_none()
+        if plt is not None:
+            sweep_figure.draw(plt, table, os.path.join(out_dir, stem + "_sweep.png"))
+    finally:
+        sys.path.remove(HERE)
 
 
 def files_in(folder):

@@ -23,19 +23,20 @@ SUMMARIZE = os.path.join(ROOT, "experiments", "summaries", "summarize.py")
 CASES = [
     (["results/stability/stability_square.json"], [], ["SUMMARY.md"], ["SUMMARY.md"], []),
     (["results/paper/appendix_c/appendix_c.json"], [], ["summary.md"], ["summary.md"], []),
-    (["results/sph_validation/sph_validation.json"], [], ["summary.md"], ["summary.md"], []),
     (["results/paper/appendix_b/appendix_b.json"], [], ["summary.md"], ["summary.md"], []),
     (["results/cellular/direct/direct.json"], [], ["summary.md"], ["summary.md"], []),
     (["results/cylinders/direct/direct.json"], [], ["summary.md"], ["summary.md"], ["k / k_ref - 1"]),
     (["results/two_phase/direct/two_phase_direct.json"], [], ["summary.md"], ["summary.md"], []),
     # reduced_model, the column: the paper's views, the front, the error budget, the profiles
-    (["results/paper/fig2/fig2.json"], [], ["summary.md", "summary.png"], ["summary.md"], [" %"]),
+    (["results/paper/fig2/fig2.json"], [], ["summary.md", "summary.png", "summary_sweep.png"], ["summary.md"], [" %"]),
+    # a sweep of three keys, two of them categorical: the error against each
+    (["results/sph_validation/sph_validation.json"], [], ["summary.md", "summary_sweep.png"], ["summary.md"], []),
     (["results/speed_vs_error/poiseuille_uniform/pareto_poiseuille_uniform.json"], [],
      ["summary.md", "summary.png"], ["summary.md"], []),
     (["results/error_budget/floor/error_budget_floor.json"], [], ["summary.md", "summary.png"], ["summary.md"], []),
     # reduced_model, the force-density model (kind reduced_model, model chosen by the scene)
     (["results/cellular/force_density/cellular_force_density.json"], [],
-     ["summary.md", "summary_fields.png"], ["summary.md"], ["outside solid", " %"]),
+     ["summary.md", "summary_fields.png", "summary_sweep.png"], ["summary.md"], ["outside solid", " %"]),
     # a view asked for by name on a table it cannot draw: the Markdown, no crash
     (["results/cellular/force_density/cellular_force_density.json"], ["--view", "profiles"],
      ["profiles.md"], ["profiles.md"], []),

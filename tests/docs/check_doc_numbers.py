@@ -61,6 +61,7 @@ NW12 = "near-wall: tikhonov zero-end first difference, cf, scene.n_x=12"
 CYL = "results/cylinders/reduced/reduced.json"
 FLOOR = "results/error_budget/floor/error_budget_floor.json"
 PEER = "results/peer/cylinders/"
+FRONT = "results/speed_vs_error/poiseuille_uniform/pareto_poiseuille_uniform.json"
 ALL = "errors.vs_averaged_direct_sph.all_nodes.max_rel"
 
 # (doc, text with {0}, {1}, ..., [(file, row label or None for the file's top level, dotted key, formatter), ...])
@@ -114,6 +115,14 @@ CLAIMS = [
       (SPEED, "paper: landweber n=1, cc, scene.n_x=12", "cost.speed_up", sci(3)),
       (SPEED, NW12, "cost.speed_up", sci(3))]),
     ("docs/results.md", "| **near-wall formulation** | **{0}** |", [(SPEED, NW192, ALL, pct(2))]),
+    ("README.md", "(Landweber n = 1 fine–fine, {0}), the force-density balance with Landweber closures at {1}–{2} %, "
+                  "the near-wall formulation at {3} in {4} ms",
+     [(FRONT, "landweber n=1, ff", ALL, pct(2)),
+      (FRONT, "force density, backward Euler, landweber n=2, cc", ALL, pct_number(2)),
+      (FRONT, "force density, landweber n=0, cc", ALL, pct_number(2)),
+      (FRONT, "near-wall: force density, backward Euler, tikhonov zero-end first difference, cf", ALL, pct(2)),
+      (FRONT, "near-wall: force density, backward Euler, tikhonov zero-end first difference, cf",
+       "cost.reduced_timing.min_seconds", lambda x: f"{1e3 * x:.2g}")]),
 ]
 
 

@@ -14,7 +14,7 @@ Every number is read from the table.
 import sys
 
 import field_figure
-from summary_util import fmt, get, load_table, pct, pyplot_or_none, spct
+from summary_util import fmt, get, load_table, noisy_note, pct, pyplot_or_none, speed_up_cell, spct
 
 
 def row_line(r, with_k):
@@ -36,7 +36,7 @@ def row_line(r, with_k):
     t_min = t.get("min_seconds", c.get("wall_seconds"))
     cells += [f"{fmt(t_min)} s" if t_min is not None else "-", pct(t.get("spread")), fmt(t.get("repeats")),
               f"{fmt(c.get('direct_sph_wall_seconds'))} s" if c.get("direct_sph_wall_seconds") is not None else "-",
-              fmt(c.get("speed_up"))]
+              speed_up_cell(c.get("speed_up"), t.get("spread"))]
     return "| " + " | ".join(cells) + " |"
 
 
@@ -65,6 +65,7 @@ def main(path, prefix):
     head += ["reduced run", "spread", "runs", "direct SPH", "speed-up"]
     lines += ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     lines += [row_line(r, with_k) for r in rows]
+    lines += noisy_note(lines)
     drawn = field_figure.figure_row(rows)
     figure = prefix + "_fields.png"
     if drawn is not None:

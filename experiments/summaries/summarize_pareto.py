@@ -15,7 +15,7 @@ not resolved. Every number is read from the table; ratios are meaningful within 
 import json
 import sys
 
-from summary_util import figure_label, fmt, load_table, pct, pyplot_or_none, spct
+from summary_util import figure_label, fmt, load_table, noisy_note, pct, pyplot_or_none, speed_up_cell, spct
 
 
 def error_of(row, ref, subset):
@@ -93,7 +93,7 @@ def main(path, prefix, key=None):
         lines.append(f"| {label} | {status} | {pct(error_of({'errors': e}, ref, subset))} | {spct(e.get(ref, {}).get('peak_relative_difference'))} | "
                      f"{pct(error_of({'errors': e}, 'vs_analytic', subset))} | {fmt(total_seconds(r))} | "
                      f"{fmt((c.get('reduced_timing') or {}).get('repeats', 1))} | {pct(timing_spread(r))} | "
-                     f"{fmt(c.get('deconvolution_seconds'))} | {fmt(c.get('steps'))} | {fmt(c.get('speed_up'))} |")
+                     f"{fmt(c.get('deconvolution_seconds'))} | {fmt(c.get('steps'))} | {speed_up_cell(c.get('speed_up'), timing_spread(r))} |")
     if pts:
         best = min(pts, key=lambda p: p[1])
         fastest = min(pts, key=lambda p: p[0])
@@ -104,6 +104,7 @@ def main(path, prefix, key=None):
             lines.append("Some front points were timed once: their order in time is not established by this table.")
         for a, b in unresolved_pairs(on_front):
             lines.append(f"Within the timing spread of each other (order in time not resolved): {a}; {b}.")
+    lines += noisy_note(lines)
     open(prefix + ".md", "w").write("\n".join(lines) + "\n")
     plt = pyplot_or_none()
     if plt is None:

@@ -7,7 +7,7 @@ writes OUT_PREFIX.md and OUT_PREFIX.png. Every number is read from the table.
 import json
 import sys
 
-from summary_util import figure_label, fmt, get, load_table, pct, pyplot_or_none, spct
+from summary_util import figure_label, fmt, get, load_table, noisy_note, pct, pyplot_or_none, speed_up_cell, spct
 
 
 def main(path, prefix):
@@ -37,7 +37,9 @@ def main(path, prefix):
             f"{pct(get(e, 'vs_averaged_direct_sph', 'fluid_nodes', 'max_rel'))} | "
             f"{spct(get(e, 'vs_averaged_direct_sph', 'peak_relative_difference'))} | {fmt(c.get('steps'))} | {fmt(c.get('dt'))} | "
             f"{fmt(c.get('wall_seconds'))} | {fmt(c.get('setup_seconds'))} | {fmt(timing.get('repeats', 1))} | "
-            f"{pct(timing.get('spread'))} | {fmt(c.get('direct_sph_wall_seconds'))} | {fmt(c.get('speed_up'))} |")
+            f"{pct(timing.get('spread'))} | {fmt(c.get('direct_sph_wall_seconds'))} | "
+            f"{speed_up_cell(c.get('speed_up'), timing.get('spread'))} |")
+    lines += noisy_note(lines)
     open(prefix + ".md", "w").write("\n".join(lines) + "\n")
     plt = pyplot_or_none()
     if plt is None:

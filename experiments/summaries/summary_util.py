@@ -28,6 +28,24 @@ def spct(x, digits=3):
     return f"{100.0 * x:+.{digits}g} %"
 
 
+NOISY_SPREAD = 0.10
+NOISY_NOTE = ("*noisy*: the reduced model's repeated runs spread by more than 10 % ((median - min) / min): its time, "
+              "and so the speed-up, is not resolved to better than that spread (load from other work).")
+
+
+def noisy_note(lines):
+    """[blank line, NOISY_NOTE] when some line marks a speed-up " (noisy)", else nothing."""
+    return ["", NOISY_NOTE] if any(" (noisy)" in line for line in lines) else []
+
+
+def speed_up_cell(speed_up, spread):
+    """A speed-up for a table, marked " (noisy)" where the repeated runs' spread exceeds NOISY_SPREAD."""
+    text = fmt(speed_up)
+    if speed_up is not None and spread is not None and spread > NOISY_SPREAD:
+        text += " (noisy)"
+    return text
+
+
 def get(d, *keys):
     """d[k1][k2]..., or None where a key is missing."""
     for k in keys:

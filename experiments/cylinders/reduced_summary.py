@@ -20,7 +20,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "summaries"))
 import field_figure  # noqa: E402  (the summaries' helpers)
-from summary_util import get  # noqa: E402
+from summary_util import get, log_ticks  # noqa: E402
 
 
 def pct(x):
@@ -97,6 +97,7 @@ def figures(rows, out, label=None):
             clusters.append({"t": t, "err": err, "labels": [str(k)]})
     ax.set_xscale("log")
     ax.set_yscale("log")
+    log_ticks(ax)
     for c in clusters:
         ax.annotate(", ".join(c["labels"]), (c["t"], c["err"]), textcoords="offset points", xytext=(4, 4), fontsize=8)
     direct = pts[0]["cost"]["direct_sph_wall_seconds"]

@@ -13,9 +13,10 @@ records them) and no less accurate, and strictly better in one of the two. Where
 not resolved. Every number is read from the table; ratios are meaningful within one table only.
 """
 import json
+import math
 import sys
 
-from summary_util import figure_label, fmt, load_table, noisy_note, pct, pyplot_or_none, speed_up_cell, spct
+from summary_util import figure_label, fmt, load_table, log_ticks, noisy_note, pct, pyplot_or_none, speed_up_cell, spct
 
 
 def error_of(row, ref, subset):
@@ -113,10 +114,26 @@ def main(path, prefix, key=None):
     fig, (ax, key) = plt.subplots(1, 2, figsize=(10.0, 4.8), gridspec_kw={"width_ratios": [3, 2]})
     key.axis("off")
     numbered = sorted(pts, key=lambda p: p[1])
+    # Points within 8 % of each other in time and error share one label ("4, 5, 14"): they are not resolved.
+    clusters = []
     for k, (t, e, r) in enumerate(numbered, 1):
         on = r["id"] in front
         ax.plot(t, 100.0 * e, "o" if on else "x", color="C3" if on else "0.4")
-        ax.annotate(str(k), (t, 100.0 * e), fontsize=7, xytext=(3, 2), textcoords="offset points")
+        for c in clusters:
+            if abs(math.log(t / c["t"])) < math.log(1.08) and abs(math.log(e / c["e"])) < math.log(1.08):
+                c["k"].append(str(k))
+                break
+        else:
+            clusters.append({"t": t, "e": e, "k": [str(k)]})
+    # Neighbouring labels (within 30 % in time and error) alternate above and below their points.
+    placed = []
+    for c in sorted(clusters, key=lambda c: c["t"]):
+        near = [p for p in placed if abs(math.log(c["t"] / p[0]["t"])) < math.log(1.3)
+                and abs(math.log(c["e"] / p[0]["e"])) < math.log(1.3)]
+        below = bool(near) and not near[-1][1]
+        ax.annotate(", ".join(c["k"]), (c["t"], 100.0 * c["e"]), fontsize=7, xytext=(3, -9 if below else 2),
+                    textcoords="offset points")
+        placed.append((c, below))
     key.text(0.0, 1.0, "\n".join(f"{k}{'*' if r['id'] in front else ''}: {figure_label(r['label'], 60)}"
                                    for k, (_, _, r) in enumerate(numbered, 1)) + "\n(*: on the front)",
              va="top", ha="left", fontsize=6, family="monospace", transform=key.transAxes)
@@ -125,6 +142,7 @@ def main(path, prefix, key=None):
         ax.step([p[0] for p in fp], [100.0 * p[1] for p in fp], where="post", color="C3", lw=0.8)
     ax.set_xscale("log")
     ax.set_yscale("log")
+    log_ticks(ax)
     ax.set_xlabel("reduced-model wall time, setup + run [s]")
     ref_words = {"vs_averaged_direct_sph": "vs averaged direct SPH", "vs_averaged_analytic": "vs averaged analytic",
                  "vs_analytic": "vs analytic"}.get(ref, ref)

@@ -7,7 +7,7 @@ writes OUT_PREFIX.md and OUT_PREFIX.png. Every number is read from the table.
 import json
 import sys
 
-from summary_util import figure_label, fmt, get, load_table, noisy_note, pct, pyplot_or_none, speed_up_cell, spct
+from summary_util import figure_label, fmt, get, load_table, log_ticks, noisy_note, pct, pyplot_or_none, speed_up_cell, spct
 
 
 def main(path, prefix):
@@ -70,6 +70,7 @@ def main(path, prefix):
         ref = p.get("direct_average", p["analytic_average"])
         diff = [max(abs(a - b) / scale, 1e-12) for a, b in zip(p["reduced"], ref)]
         ex.semilogy(p["y"], diff, "r.-", lw=0.8)
+        log_ticks(ex, "y")
         ex.set_xlabel("y")
         ex.set_ylabel(("|v_red - v_direct| / peak" if "direct_average" in p else "|v_red - v_avg. analytic| / peak")
                       if k % ncols == 0 else "", fontsize=6)

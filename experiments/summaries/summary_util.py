@@ -134,6 +134,22 @@ def dirty_mark(row):
     return " [dirty build]" if isinstance(p, dict) and p.get("dirty") else ""
 
 
+def log_ticks(ax, which="both"):
+    """Enough labelled ticks on log axes: at 1, 2 and 5 per decade where the axis spans few decades (matplotlib
+    labels only the powers of ten, one label or none on an axis within a decade), as plain numbers."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+    axes = {"x": [ax.xaxis], "y": [ax.yaxis], "both": [ax.xaxis, ax.yaxis]}[which]
+    for axis in axes:
+        if axis.get_scale() != "log":
+            continue
+        lo, hi = sorted(axis.get_view_interval())
+        if lo <= 0 or hi / lo > 1e4:
+            continue
+        axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+        axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        axis.set_minor_formatter(NullFormatter())
+
+
 def pyplot_or_none():
     """matplotlib.pyplot on the Agg backend. Where matplotlib is missing the summary fails loudly (exit 1, naming
     the interpreter and the package), unless figures were turned off (summarize.py --no-figures, or

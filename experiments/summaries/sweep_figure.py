@@ -8,7 +8,7 @@ SPH's particles against the analytic solution; the closure's stress against the 
 relative error."""
 import math
 
-from summary_util import figure_label, get
+from summary_util import figure_label, get, log_ticks
 
 ERRORS = [
     (("errors", "vs_averaged_direct_sph", "all_nodes", "max_rel"), "max error vs averaged direct SPH, all nodes (%)"),
@@ -95,6 +95,7 @@ def draw(plt, table, path):
         positive = [y for y in ys if y > 0]
         if positive and max(positive) / min(positive) > 20:
             ax.set_yscale("log")
+        log_ticks(ax)
         ax.set_xlabel(key)
         ax.set_ylabel(err_name, fontsize=9)
         ax.grid(True, which="both", lw=0.3, alpha=0.5)

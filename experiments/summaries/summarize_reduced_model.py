@@ -59,8 +59,16 @@ def main(path, prefix):
     for k, r in enumerate(rows):
         ax, ex = axes[2 * (k // ncols)][k % ncols], axes[2 * (k // ncols) + 1][k % ncols]
         p = r["profile"]
-        ax.plot(p["y"], p["analytic"], "k-", label="analytic")
-        ax.plot(p["y"], p["analytic_average"], "k:", label="averaged analytic")
+        smooth = parabola_through(p["y"], p["analytic"])
+        if smooth is not None:  # the nodes lie on one parabola ((5.15)): drawn smooth between them
+            ax.plot(smooth[0], smooth[1], "k-", lw=0.9, label="analytic")
+        else:  # known at the nodes only (periodic force, layers): not interpolated
+            ax.plot(p["y"], p["analytic"], "k.", ms=3, label="analytic (at the nodes)")
+        smooth = parabola_through(p["y"], p["analytic_average"])
+        if smooth is not None:
+            ax.plot(smooth[0], smooth[1], "k:", label="averaged analytic")
+        else:
+            ax.plot(p["y"], p["analytic_average"], "k+", ms=4, label="averaged analytic (at the nodes)")
         if "direct_average" in p:
             ax.plot(p["y"], p["direct_average"], "bs", mfc="none", label="averaged direct SPH")
         ax.plot(p["y"], p["reduced"], "rd--", label="reduced model")
@@ -69,14 +77,31 @@ def main(path, prefix):
         scale = max(abs(v) for v in p["analytic"]) or 1.0
         ref = p.get("direct_average", p["analytic_average"])
         diff = [max(abs(a - b) / scale, 1e-12) for a, b in zip(p["reduced"], ref)]
-        ex.semilogy(p["y"], diff, "r.-", lw=0.8)
+        ex.semilogy(p["y"], [100.0 * d for d in diff], "r.-", lw=0.8)
         log_ticks(ex, "y")
         ex.set_xlabel("y")
-        ex.set_ylabel(("|v_red - v_direct| / peak" if "direct_average" in p else "|v_red - v_avg. analytic| / peak")
-                      if k % ncols == 0 else "", fontsize=6)
-    axes[0][0].legend(fontsize=6)
-    fig.tight_layout()
+        ex.set_ylabel(("|v_red - v_direct| / peak (%)" if "direct_average" in p
+                       else "|v_red - v_avg. analytic| / peak (%)") if k % ncols == 0 else "", fontsize=6)
+    # One legend for every panel, below them (off the data).
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.tight_layout(rect=(0, 0.06 / nrows, 1, 1))
+    fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=7, frameon=False)
     fig.savefig(prefix + ".png", dpi=110)
+
+
+def parabola_through(y, v):
+    """(ys, vs) on a fine grid when the points (y, v) lie on one parabola to 1e-9 of their peak (the uniform-force
+    channel's (5.15)), else None."""
+    import numpy as np
+    y, v = np.asarray(y, dtype=float), np.asarray(v, dtype=float)
+    if len(y) < 4:
+        return None
+    c = np.polyfit(y, v, 2)
+    scale = np.abs(v).max() or 1.0
+    if np.abs(np.polyval(c, y) - v).max() > 1e-9 * scale:
+        return None
+    ys = np.linspace(y.min(), y.max(), 400)
+    return ys, np.polyval(c, ys)
 
 
 if __name__ == "__main__":

@@ -92,6 +92,9 @@ def draw(plt, table, path):
             xs_all = [p[0] for pts in series.values() for p in pts]
             if min(xs_all) > 0 and max(xs_all) / min(xs_all) > 4:
                 ax.set_xscale("log")
+            if all(isinstance(x, int) for x in xs_all):  # orders, counts: integer ticks
+                from matplotlib.ticker import MaxNLocator
+                ax.xaxis.set_major_locator(MaxNLocator(integer=True))
         positive = [y for y in ys if y > 0]
         if positive and max(positive) / min(positive) > 20:
             ax.set_yscale("log")

@@ -4,12 +4,14 @@
 # mpirun test of the runner.
 set -euo pipefail
 packages=(cmake g++ make git libeigen3-dev libgsl-dev nlohmann-json3-dev libsuitesparse-dev libgtest-dev
-          libbenchmark-dev libomp-dev libhdf5-dev python3 python3-h5py libopenmpi-dev openmpi-bin python3-pysph)
+          libbenchmark-dev libomp-dev libhdf5-dev python3 python3-h5py libopenmpi-dev openmpi-bin python3-pysph
+          python3-pandas python3-matplotlib)
 # python3-h5py: the tests check that the reference store's H5Part files open in h5py, and read one it wrote.
+# python3-pandas: the table reader python/closurelab/tables.py (and its test); python3-matplotlib: the summaries'
+# figures (scripts/reproduce.sh, the test summaries_every_kind); both for Debian's /usr/bin/python3.
 # python3-pysph: the peer test (ctest -L peer) runs an independent PySPH model of the channel against the engine
 # (under /usr/bin/python3; without it that test reports SKIP).
-# The figures of scripts/reproduce.sh also need python3-matplotlib: `scripts/install_deps.sh --figures`.
-[ "${1:-}" = "--figures" ] && packages+=(python3-matplotlib)
+# (`--figures`, which added python3-matplotlib, is still accepted: it is now in the list.)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

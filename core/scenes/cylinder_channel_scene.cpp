@@ -1,4 +1,4 @@
-// The cylinder-channel scene (issue 21 §1: a walled scene that is not x-invariant): a square box of side L, periodic in
+// The cylinder-channel scene (a walled scene that is not x-invariant): a square box of side L, periodic in
 // x, walls 3η' thick at the bottom and the top (5.3), one cylinder of radius a at the centre of the box, the square
 // lattice of spacing ε' = L/n over the whole box; the lattice particles in the walls and inside the cylinder are frozen
 // at zero velocity, the others are fluid driven by the body force g along x (a row of obstacles in a channel, Stokes

@@ -1,4 +1,4 @@
-// The cylinder-lattice scene (issue 21 §2): a periodic square cell of side L, periodic in x and y, one cylinder of
+// The cylinder-lattice scene (flow through a porous medium): a periodic square cell of side L, periodic in x and y, one cylinder of
 // radius a at its centre, the square lattice of spacing ε' = L/n over the whole cell; the lattice particles inside
 // the cylinder (distance to the centre below a) are frozen at zero velocity (5.3), the others are fluid driven by
 // the body force g along x. Stokes flow at small g (Re = a⟨u⟩/ν ≪ 1). The reference is the Darcy permeability

@@ -2,13 +2,16 @@
 """The reduced model on the cylinder lattice (experiments/cylinders/reduced.json) as a Markdown table and two figures.
 
 Usage: /usr/bin/python3 experiments/cylinders/reduced_summary.py results/cylinders/reduced/reduced.json results/cylinders/reduced
-       [--no-figures]
+       [--no-figures] [--row LABEL]
 
 Writes OUT/table.md (every row: the error against the averaged direct SPH over all coarse nodes, the nodes outside
 and inside the cylinder, the paper's peak metric; the Darcy permeability of the reduced model against the direct
 SPH's and the reference; the cost: the fastest reduced run, its spread, the direct run, the speed-up) and, unless
---no-figures, OUT/field.png (the velocity magnitude of the averaged direct SPH and of the reduced model and their
-difference at a = 0.2 L, n = 192, the cylinder drawn) and OUT/front.png (error against reduced wall time at n = 192).
+--no-figures, OUT/field.png (the velocity magnitude of the averaged direct SPH and of the reduced model in one colour
+range and their difference, the cylinder drawn: experiments/summaries/field_figure.py) for the cell labelled LABEL
+(default "a=0.2L n=192" where the table has it, else the ok cell at the finest resolution with the smallest all-node
+error), and OUT/front.png (error against reduced wall time of the cells at that cell's n and radius). Prints the
+paths written.
 """
 import json
 import math
@@ -16,7 +19,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "summaries"))
-from summary_util import get  # noqa: E402  (the summaries' helpers)
+import field_figure  # noqa: E402  (the summaries' helpers)
+from summary_util import get, log_ticks  # noqa: E402
 
 
 def pct(x):
@@ -40,43 +44,43 @@ def row_line(r):
         c.get("direct_sph_wall_seconds", float("nan")), c.get("speed_up", float("nan")))
 
 
-def figures(rows, out):
+def figure_row(rows, label):
+    """The row drawn: the one labelled `label` (--row), else "a=0.2L n=192" where the table has it (the committed
+    figure's), else the ok row at the finest resolution with the smallest all-node error (field_figure.figure_row)."""
+    if label is not None:
+        row = field_figure.figure_row(rows, label)
+        if row is None:
+            raise SystemExit("reduced_summary: no row labelled '%s' with fields; labels: %s"
+                             % (label, ", ".join(r.get("label", "") for r in rows)))
+        return row
+    return field_figure.figure_row(rows, "a=0.2L n=192") or field_figure.figure_row(rows)
+
+
+def figures(rows, out, label=None):
+    """Writes OUT/field.png and OUT/front.png; returns the paths written."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
 
-    base = next(r for r in rows if r["label"] == "a=0.2L n=192" and "fields" in r)
-    f = base["fields"]
-    x, y = np.array(f["x"]), np.array(f["y"])
-    nx, ny = len(x), len(y)
-    red = np.hypot(np.array(f["reduced"]["vx"]), np.array(f["reduced"]["vy"])).reshape(ny, nx)
-    dvx = np.array(f["reduced"]["vx"]) - np.array(f["direct_average"]["vx"])
-    dvy = np.array(f["reduced"]["vy"]) - np.array(f["direct_average"]["vy"])
-    dirc = np.hypot(np.array(f["direct_average"]["vx"]), np.array(f["direct_average"]["vy"])).reshape(ny, nx)
-    scale = dirc.max()
-    diff = np.hypot(dvx, dvy).reshape(ny, nx) / scale
-    a = base["params"]["scene"]["radius_over_length"] * base["params"]["scene"].get("l", 1.0)
-    fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
-    panels = [(dirc / scale, "averaged direct SPH |v̄| / peak"), (red / scale, "reduced model |v̄| / peak"),
-              (diff, "|v̄_red − v̄_direct| / peak")]
-    for ax, (field, title) in zip(axes, panels):
-        m = ax.pcolormesh(x, y, field, shading="nearest", cmap="viridis")
-        fig.colorbar(m, ax=ax, format="%.1e" if field is diff else "%.2f")
-        ax.add_patch(plt.Circle((0.5, 0.5), a, fill=False, color="w", lw=1.5))
-        ax.set_aspect("equal")
-        ax.set_title(title, fontsize=10)
-        ax.set_xlabel("x / L")
-    axes[0].set_ylabel("y / L")
-    fig.suptitle("Stokes flow through a square lattice of cylinders, a = 0.2 L, n = 192, coarse mesh 16 x 16 "
-                 "(commit %s)" % base["provenance"]["git_commit"][:7], fontsize=10)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "field.png"), dpi=110)
-    plt.close(fig)
+    base = figure_row(rows, label)
+    if base is None:
+        print("reduced_summary: no row has fields: no figure drawn", file=sys.stderr)
+        return []
+    scene = base["params"]["scene"]
+    nx, ny = field_figure.node_count(base)
+    written = [os.path.join(out, "field.png")]
+    field_figure.draw(plt, base, written[0],
+                      "%s, %s: coarse mesh %d x %d (commit %s)" % (scene["name"], base["label"], nx, ny,
+                                                                   base["provenance"]["git_commit"][:7]))
 
+    n, a = scene["n"], scene.get("radius_over_length")
+    pts = [r for r in rows if r["params"]["scene"]["n"] == n and r.get("status") == "ok"
+           and r["params"]["scene"].get("radius_over_length") == a and r.get("errors")
+           and get(r, "cost", "reduced_timing", "min_seconds") is not None]
+    if not pts:
+        return written
     fig, ax = plt.subplots(figsize=(9, 4.5))
-    pts = [r for r in rows if r["params"]["scene"]["n"] == 192 and r.get("status") == "ok"
-           and r["params"]["scene"]["radius_over_length"] == 0.2]
     # Each point at its fastest run, the bar to its slowest (the range of the repeats); points within 30 % in time
     # and 20 % in error share one label (they are not resolved from each other by the timing).
     clusters = []
@@ -93,6 +97,7 @@ def figures(rows, out):
             clusters.append({"t": t, "err": err, "labels": [str(k)]})
     ax.set_xscale("log")
     ax.set_yscale("log")
+    log_ticks(ax)
     for c in clusters:
         ax.annotate(", ".join(c["labels"]), (c["t"], c["err"]), textcoords="offset points", xytext=(4, 4), fontsize=8)
     direct = pts[0]["cost"]["direct_sph_wall_seconds"]
@@ -100,17 +105,26 @@ def figures(rows, out):
     ax.text(direct / 1e3, ax.get_ylim()[1], " 1/1000 of the direct SPH", va="top", fontsize=8, color="0.4")
     ax.set_xlabel("reduced run, fastest of the repeats (s; bar: to the slowest)")
     ax.set_ylabel("max error over all coarse nodes (% of peak)")
-    ax.set_title("a = 0.2 L, n = 192: error against cost", fontsize=10)
-    key = "\n".join("%d: %s" % (k, r["label"].replace("a=0.2L n=192", "").strip() or "base (Tikhonov 1e-6)")
+    ax.set_title("a = %g L, n = %d: error against cost" % (a, n), fontsize=10)
+    key = "\n".join("%d: %s" % (k, r["label"].replace(base["label"], "").strip() or "base (Tikhonov 1e-6)")
                     for k, r in enumerate(pts, 1))
     ax.text(1.02, 0.5, key, transform=ax.transAxes, va="center", fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "front.png"), dpi=110)
+    written.append(os.path.join(out, "front.png"))
+    fig.savefig(written[-1], dpi=110)
     plt.close(fig)
+    return written
 
 
 def main():
-    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    argv, label = sys.argv[1:], None
+    if "--row" in argv:
+        k = argv.index("--row")
+        if k + 1 >= len(argv):
+            raise SystemExit("reduced_summary: --row needs a cell label")
+        label = argv[k + 1]
+        argv = argv[:k] + argv[k + 2:]
+    args = [a for a in argv if not a.startswith("--")]
     table = json.load(open(args[0]))
     out = args[1]
     rows = table["rows"]
@@ -127,9 +141,13 @@ def main():
              "k red/ref − 1 | reduced run | direct SPH | speed-up |",
              "|---|---|---|---|---|---|---|---|---|---|---|"]
     lines += [row_line(r) for r in rows]
-    open(os.path.join(out, "table.md"), "w").write("\n".join(lines) + "\n")
-    if "--no-figures" not in sys.argv:
-        figures(rows, out)
+    os.makedirs(out, exist_ok=True)
+    written = [os.path.join(out, "table.md")]
+    open(written[0], "w").write("\n".join(lines) + "\n")
+    if "--no-figures" not in argv:
+        written += figures(rows, out, label)
+    for path in written:
+        print("reduced_summary: wrote %s" % path)
 
 
 if __name__ == "__main__":

@@ -33,15 +33,15 @@ def main():
         c = rs[0]["scene_derived"]["solid_fraction"]
         out.append("## a = %g L (c = %.4f), reference k/L^2 = %.6f (F/(mu U) = %.3f)" % (a, c, ref, 1.0 / ref))
         out.append("")
-        out.append("| n | k/L^2 | k / k_ref - 1 | effective radius shift (spacings) | status | model time | steps | "
+        out.append("| n | k/L^2 | k / k_ref - 1 (%) | effective radius shift (spacings) | status | model time | steps | "
                    "wall s | max displacement (eps') | max distance from lattice (eps') | density deviation | Re |")
         out.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
         for r in rs:
             e = r["errors"]
             d = r["direct_sph"]
             shift = e.get("effective_solid_size", {}).get("shift_in_spacings")
-            out.append("| %d | %.6f | %+.4f | %s | %s | %.3f | %d | %.0f | %.3f | %.3f | [%.1e, %.1e] | %.1e |" % (
-                r["params"]["scene"]["n"], e["permeability"]["over_l2"], e["permeability"]["relative_difference"],
+            out.append("| %d | %.6f | %+.2f %% | %s | %s | %.3f | %d | %.0f | %.3f | %.3f | [%.1e, %.1e] | %.1e |" % (
+                r["params"]["scene"]["n"], e["permeability"]["over_l2"], 100.0 * e["permeability"]["relative_difference"],
                 "%.3f" % shift if shift is not None else "-", d["status"], d["time"], d["steps"], d["wall_seconds"],
                 e["max_displacement_dx"], e["max_distance_from_lattice_dx"], e["density_deviation"]["min"],
                 e["density_deviation"]["max"], e["flow"]["reynolds_a_u_over_nu"]))
@@ -57,15 +57,15 @@ def main():
             # An offset of the effective surface by a fixed number of spacings is a first-order error exactly:
             # k(n) = k + C / n, so k = 2 k(2n) - k(n).
             k1 = 2.0 * ks[-1] - ks[-2]
-            out.append("- first-order extrapolation from n = %d and %d, 2 k(2n) - k(n): k/L^2 = %.6f (%+.4f against the "
-                       "reference)" % (ns[-2], ns[-1], k1, k1 / ref - 1.0))
+            out.append("- first-order extrapolation from n = %d and %d, 2 k(2n) - k(n): k/L^2 = %.6f (%+.2f %% against the "
+                       "reference)" % (ns[-2], ns[-1], k1, 100.0 * (k1 / ref - 1.0)))
         if len(rs) >= 3 and ns[-1] == 2 * ns[-2] == 4 * ns[-3]:
             d1, d2 = ks[-3] - ks[-2], ks[-2] - ks[-1]
             if d1 * d2 > 0:
                 p = math.log2(d1 / d2)
                 k_inf = ks[-1] - d2 / (2.0 ** p - 1.0)
                 out.append("- order from the three resolutions alone (Richardson): %.2f; extrapolated k/L^2 = %.6f "
-                           "(%+.4f against the reference)" % (p, k_inf, k_inf / ref - 1.0))
+                           "(%+.2f %% against the reference)" % (p, k_inf, 100.0 * (k_inf / ref - 1.0)))
         out.append("")
     print("\n".join(out))
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The near-wall closure's parameter by each rule (issue 26) as one Markdown table.
+"""The near-wall closure's parameter by each rule as one Markdown table.
 
 Usage: python3 experiments/near_wall/rules_table.py TABLE.json [TABLE.json ...] > results/near_wall/rules.md
 

@@ -24,9 +24,17 @@ Views (the summarize_*.py files beside this one, kept importable and runnable on
                          experiment error_budget_* summarize_error_budget  table  -> summary.md, summary.png
                          experiment two_phase      summarize_two_phase_reduced  main, eta -> OUT_DIR/
                          otherwise                 summarize_reduced_model  table  -> summary.md, summary.png
+                         (rows of model force_density_2d: as reduced_model_2d_force_density; of mesh_2d: as
+                         reduced_model_2d, whatever the experiment's name)
   reduced_model_2d                                 summarize_cellular_reduced  table -> summary.md, summary_fields.png
                                                    (experiment pareto_*: the front as above, and the fields)
-Every number is read from the tables.
+  reduced_model_2d_force_density                   summarize_force_density_2d  table -> summary.md, summary_fields.png
+  direct_sph_validation  cylinder scenes           ../cylinders/table       table  -> summary.md (permeability)
+  snapshot_closure                                 summarize_snapshot_closure  table -> summary.md, summary.png
+A table whose spec sweeps a scalar key (`axes`) also gets OUT_DIR/summary_sweep.png (SUMMARY_sweep.png): the error
+against each swept key, one line per cell (sweep_figure.py); not with --view or --no-figures.
+Every number is read from the tables. Errors are printed in % (relative differences with their sign) by every view;
+Appendix B's stresses are in model units. The paths written are printed, one a line ("summarize: wrote PATH").
 """
 import contextlib
 import json
@@ -43,16 +51,24 @@ def view_of(table):
         return "summarize_stability", "stdout", "SUMMARY.md"
     if kind == "quadrature_convergence":
         return "summarize_appendix_c", "stdout", "summary.md"
+    rows = table.get("rows", [])
+    scenes = {(r.get("params", {}).get("scene") or {}).get("name") for r in rows}
     if kind == "direct_sph_validation":
         if name == "appendix_b":
             return "summarize_appendix_b", "stdout", "summary.md"
-        scenes = {r.get("params", {}).get("scene", {}).get("name") for r in table.get("rows", [])}
+        if scenes & {"cylinder-lattice", "cylinder-channel"}:
+            return "../cylinders/table", "stdout", "summary.md"
         if "layered-two-phase" in scenes:
             return "summarize_two_phase", "stdout", "summary.md"
         if "cellular" in scenes:
             return "summarize_cellular", "stdout", "summary.md"
         return "summarize_validation", "stdout", "summary.md"
     if kind == "reduced_model":
+        model = reduced_model_of(rows)
+        if model == "force_density_2d":
+            return "summarize_force_density_2d", "prefix", "summary"
+        if model == "mesh_2d":
+            return "summarize_cellular_reduced", "prefix", "summary"
         if name.startswith("pareto_"):
             return "summarize_pareto", "prefix", "summary"
         if name.startswith("error_budget_"):
@@ -62,8 +78,29 @@ def view_of(table):
         return "summarize_reduced_model", "prefix", "summary"
     if kind == "reduced_model_2d":
         return "summarize_cellular_reduced", "prefix", "summary"
+    if kind == "reduced_model_2d_force_density":
+        return "summarize_force_density_2d", "prefix", "summary"
+    if kind == "snapshot_closure":
+        return "summarize_snapshot_closure", "prefix", "summary"
     raise SystemExit(f"summarize: table kind '{kind}' has no view; known kinds: deconvolution_stability, "
-                     "quadrature_convergence, direct_sph_validation, reduced_model, reduced_model_2d")
+                     "quadrature_convergence, direct_sph_validation, reduced_model, reduced_model_2d, "
+                     "reduced_model_2d_force_density, snapshot_closure")
+
+
+def reduced_model_of(rows):
+    """Which reduced model a reduced_model table's rows ran: the row's "model" where the cell named one, else what
+    its output says (the 2D models write `fields`, the force-density model's with `outside_solid`; the column
+    writes `profile`); "column" when no row tells (rows that all failed)."""
+    for r in rows:
+        model = (r.get("params") or {}).get("model")
+        if model:
+            return model
+    for r in rows:
+        if "profile" in r:
+            return "column"
+        if "fields" in r:
+            return "force_density_2d" if "outside_solid" in r["fields"] else "mesh_2d"
+    return "column"
 
 
 def run_view(script, args, stdout_file=None):
@@ -110,6 +147,11 @@ def main(argv):
     if not tables or len(rest) > 1:
         print("usage: summarize.py TABLE.json [MORE.json ...] [OUT_DIR]", file=sys.stderr)
         return 2
+    missing = [t for t in tables if not os.path.isfile(t)]
+    if missing:
+        print(f"summarize: no such table: {', '.join(missing)} (arguments ending in .json are tables; an output "
+              "folder must not end in .json)", file=sys.stderr)
+        return 2
     with open(tables[0]) as f:
         first = json.load(f)
     script, contract, target = forced or view_of(first)
@@ -118,13 +160,45 @@ def main(argv):
         return 0
     out_dir = rest[0] if rest else (os.path.dirname(tables[0]) or ".")
     os.makedirs(out_dir, exist_ok=True)
+    before = files_in(out_dir)
     if contract == "stdout":
         run_view(script, tables, os.path.join(out_dir, target))
     elif contract == "prefix":
         run_view(script, [tables[0], os.path.join(out_dir, target)])
     else:
         run_view(script, tables + [out_dir])
+    if forced is None and os.environ.get("CLOSURELAB_FIGURES") != "off":
+        sweep_figure_of(first, out_dir, os.path.splitext(target)[0] or "summary")
+    for path in sorted(p for p, stamp in files_in(out_dir).items() if before.get(p) != stamp):
+        print(f"summarize: wrote {path}")
     return 0
+
+
+def sweep_figure_of(table, out_dir, stem):
+    """OUT_DIR/<stem>_sweep.png: the error against each swept key of the (first) table (sweep_figure.py), where its
+    spec sweeps a scalar key."""
+    sys.path.insert(0, HERE)
+    try:
+        import sweep_figure
+        from summary_util import pyplot_or_none
+        if not sweep_figure.sweeps(table):
+            return
+        plt = pyplot_or_none()
+        if plt is not None:
+            sweep_figure.draw(plt, table, os.path.join(out_dir, stem + "_sweep.png"))
+    finally:
+        sys.path.remove(HERE)
+
+
+def files_in(folder):
+    """The files directly in `folder` with their modification time and size (to report what a view wrote)."""
+    out = {}
+    for name in os.listdir(folder):
+        path = os.path.join(folder, name)
+        if os.path.isfile(path):
+            st = os.stat(path)
+            out[path] = (st.st_mtime_ns, st.st_size)
+    return out
 
 
 if __name__ == "__main__":

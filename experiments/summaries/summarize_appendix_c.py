@@ -3,14 +3,14 @@
 
 Usage: python3 experiments/summaries/summarize_appendix_c.py TABLE.json > summary.md
 Every number printed is read from the table. Errors: max |T_coarse - T_exact| of T_int,xy over the nodes of a
-region, relative to max |T_exact,xy| in the channel. Observed order: least-squares slope of log(error) against
+region, in % of max |T_exact,xy| in the channel. Observed order: least-squares slope of log(error) against
 log(coarse spacing) over the x-integrated rows with stride_y >= 2 (stride 1 is the exact sum, round-off).
 """
 import json
 import math
 import sys
 
-from summary_util import fmt, slope, load_table, dirty_mark
+from summary_util import dirty_mark, fmt, load_table, pct, slope
 
 
 def main(path):
@@ -21,7 +21,7 @@ def main(path):
     print(f"Generated from `{path}`; commit `{prov['git_commit']}`, {prov['compiler']}, {prov['build_type']}, "
           f"{prov['threads']} thread(s), {prov['date_utc']}, command `{prov['command']}`. "
           f"Table complete: {table['complete']}.\n")
-    print("Errors relative to max |T_exact,xy| in the channel; *interior*: nodes >= 3 eta' from the walls; *band*: "
+    print("Errors in % of max |T_exact,xy| in the channel; *interior*: nodes >= 3 eta' from the walls; *band*: "
           "channel nodes nearer; *walls*: nodes inside the walls. *dc/eta'*: R-grid spacing along y over eta'. "
           "*N/N_C paper*: s_x s_y (2D grid) or s_y^2 (x-integrated column, the square grid of the same y-spacing); "
           "*N/N_C strip*: particles of this strip per R-node (fine wall bands add R-rows). *wall band*: coarse = plain (5.27); "
@@ -42,8 +42,8 @@ def main(path):
         err = e["channel"]["max_rel"]
         wb = p["quadrature"]["wall_band"]
         print(f"| {p['evaluation']['velocity']}{dirty_mark(r)} | {wb} | {grid} | {'-' if sx == 0 else sx} x {sy} | {fmt(d.get('coarse_spacing_over_eta'))} | "
-              f"{fmt(d.get('coarsening_paper_equivalent'))} | {fmt(d.get('coarsening_strip'))} | {fmt(err)} | "
-              f"{fmt(e['interior']['max_rel'])} | {fmt(e['wall_band']['max_rel'])} | {fmt(e['inside_walls']['max_rel'])} | "
+              f"{fmt(d.get('coarsening_paper_equivalent'))} | {fmt(d.get('coarsening_strip'))} | {pct(err)} | "
+              f"{pct(e['interior']['max_rel'])} | {pct(e['wall_band']['max_rel'])} | {pct(e['inside_walls']['max_rel'])} | "
               f"{fmt(1e3 * c['exact_evaluate_seconds_min'])} | {fmt(1e3 * c['quadrature_evaluate_seconds_min'])} | "
               f"{fmt(c['evaluate_speedup'])} |")
         series.setdefault((p["evaluation"]["velocity"], wb, sx == 0), []).append((sy, d.get("coarse_spacing_over_eta"), e))

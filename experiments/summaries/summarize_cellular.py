@@ -8,7 +8,7 @@ resolutions of the same scene parameters, and the least-squares slope of log |e|
 import math
 import sys
 
-from summary_util import fmt, load_table, dirty_mark, slope
+from summary_util import dirty_mark, fmt, load_table, pct, slope, spct
 
 
 def main(path):
@@ -20,8 +20,8 @@ def main(path):
           f"`{prov['git_commit']}`, {prov['compiler']}, {prov['build_type']}, {prov['threads']} thread(s), "
           f"{prov['date_utc']}, command `{prov['command']}`. Table complete: {table['complete']}.\n")
     print("*amplitude*: the least-squares amplitude of the particle velocities on the mode (sin kx cos ky, "
-          "-cos kx sin ky), relative to the exact A(t) at the final time; *particles max* / *L2*: max over particles "
-          "of |v - v_exact| / A, and the relative L2 norm; *avg max*: the same for the Gaussian averages on the mesh "
+          "-cos kx sin ky), relative to the exact A(t) at the final time (its difference, in %); *particles max* / *L2*: "
+          "max over particles of |v - v_exact| / A, and the relative L2 norm, in %; *avg max*: the same for the Gaussian averages on the mesh "
           "against the exact field times the window's factor (exp(-|k|^2 eta^2 / 4) for the Gaussian); "
           "*displacement*: the largest distance of a particle from its lattice site at the end, in lattice spacings.\n")
     print("| n | Re | status | amplitude | particles max | particles L2 | avg max | factor | displacement [eps'] | "
@@ -33,8 +33,8 @@ def main(path):
         e, c = r.get("errors", {}), r.get("cost", {})
         a = e.get("amplitude", {})
         pa, av = e.get("particles_vs_analytic", {}), e.get("averaged_vs_averaged_analytic", {})
-        print(f"| {p['n']}{dirty_mark(r)} | {p['re']} | {r['status']} | {fmt(a.get('relative_difference'))} | "
-              f"{fmt(pa.get('max_rel'))} | {fmt(pa.get('l2_rel'))} | {fmt(av.get('max_rel'))} | "
+        print(f"| {p['n']}{dirty_mark(r)} | {p['re']} | {r['status']} | {spct(a.get('relative_difference'))} | "
+              f"{pct(pa.get('max_rel'))} | {pct(pa.get('l2_rel'))} | {pct(av.get('max_rel'))} | "
               f"{fmt(e.get('averaging_factor'), 6)} | {fmt(e.get('max_displacement_dx'))} | {fmt(c.get('steps'))} | "
               f"{fmt(c.get('dt'))} | {fmt(c.get('model_time'))} | {fmt(c.get('wall_seconds'))} | "
               f"{fmt(c.get('particle_steps_per_second'))} |")

@@ -11,7 +11,7 @@ at the finest resolution. Every number is read from the table.
 import os
 import sys
 
-from summary_util import fmt, get, load_table, pyplot_or_none
+from summary_util import fmt, get, load_table, pct, pyplot_or_none, spct
 
 import summarize_pareto
 
@@ -71,7 +71,7 @@ def cell_table(table, path):
              f"From `{path}`; commit `{prov['git_commit']}`, {prov['compiler']}, {prov['build_type']}, "
              f"{prov['threads']} thread(s), {prov['date_utc']}; command `{prov['command']}`; complete: "
              f"{table['complete']}.\n",
-             "Errors: max over all coarse nodes of |v_reduced - v_ref| (vector norm) / the exact amplitude A; *peak*: the "
+             "Errors: max over all coarse nodes of |v_reduced - v_ref| (vector norm) in % of the exact amplitude A; *peak*: the "
              "paper's metric, the relative difference of the largest |v| against the same reference; *floor*: the "
              "averaged direct SPH against the averaged exact field (the reference's own error). *amplitude*: the "
              "reduced field's amplitude on the mode over A, with the Landweber prediction e/(1-(1-e)^(n+1)) where it "
@@ -86,13 +86,13 @@ def cell_table(table, path):
         if r.get("status") != "ok":
             lines.append(f"| {r['label']} | {r.get('status')}: {(r.get('error') or '')[:80]} |" + " - |" * 12)
             continue
-        transient = ", ".join(fmt(get(s, "reduced_vs_averaged_direct_sph", "all_nodes", "max_rel"))
+        transient = ", ".join(pct(get(s, "reduced_vs_averaged_direct_sph", "all_nodes", "max_rel"))
                               for s in r.get("transient", []))
         total = c["wall_seconds"] + c["setup_seconds"]
         lines.append(
-            f"| {r['label']} | ok | {fmt(error(r))} | "
-            f"{fmt(get(r, 'errors', 'vs_averaged_direct_sph', 'peak_relative_difference'))} | "
-            f"{fmt(error(r, 'vs_averaged_analytic'))} | {fmt(error(r, 'direct_sph_vs_averaged_analytic'))} | "
+            f"| {r['label']} | ok | {pct(error(r))} | "
+            f"{spct(get(r, 'errors', 'vs_averaged_direct_sph', 'peak_relative_difference'))} | "
+            f"{pct(error(r, 'vs_averaged_analytic'))} | {pct(error(r, 'direct_sph_vs_averaged_analytic'))} | "
             f"{fmt(get(r, 'errors', 'amplitude', 'ratio'), 5)} | "
             f"{fmt(get(r, 'errors', 'amplitude', 'landweber_prediction'), 5)} | {transient or '-'} | {fmt(total)} | "
             f"{fmt(c.get('steps'))} | {fmt(c.get('bond_weights'))} | {fmt(c.get('direct_sph_wall_seconds'))} | "
@@ -114,7 +114,7 @@ def main(path, prefix):
         # The text does not depend on whether matplotlib drew the figure (the summaries are checked byte for byte).
         lines.append(f"\nFields (`{os.path.basename(figure)}`, drawn where matplotlib is available): the velocity "
                      "of the averaged direct SPH and of the reduced model side by side, and their difference, for the "
-                     f"most accurate cell at the finest resolution, {best['label']}, error {fmt(error(best))} against "
+                     f"most accurate cell at the finest resolution, {best['label']}, error {pct(error(best))} against "
                      "the averaged direct SPH.")
     open(prefix + ".md", "w").write("\n".join(lines) + "\n")
 

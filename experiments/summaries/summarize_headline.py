@@ -13,7 +13,7 @@ the analytic peak recovered from the row's fluid-node error (see scale_of).
 import os
 import sys
 
-from summary_util import fmt, get, load_table
+from summary_util import NOISY_NOTE, NOISY_SPREAD, fmt, get, load_table, speed_up_cell
 
 
 def pct(x):
@@ -72,7 +72,9 @@ def speed_up_text(row):
     t = c.get("reduced_timing")
     if not isinstance(t, dict) or t.get("repeats", 1) < 2:
         return f"{fmt(c.get('speed_up'))} (reduced run timed once)"
-    return f"{fmt(c.get('speed_up'))} ({fmt(c.get('speed_up_at_median'))} at the median of {t['repeats']} runs)"
+    noisy = t.get("spread") is not None and t["spread"] > NOISY_SPREAD
+    return (f"{fmt(c.get('speed_up'))} ({fmt(c.get('speed_up_at_median'))} at the median of {t['repeats']} runs"
+            + (f"; noisy: the runs spread by {pct(t['spread'])})" if noisy else ")"))
 
 
 def is_paper_formulation(row):
@@ -98,7 +100,7 @@ def main(out_dir, paths):
              "of the peak velocities), never alone. *total s*: the reduced model's setup + run, the fastest of its "
              "repeated runs (*runs*, *spread* = (median - min) / min). *speed-up*: direct SPH wall time / that "
              "fastest reduced run, same machine. *reference's own error*: the averaged direct SPH against the averaged analytic "
-             "solution at the same nodes.\n"]
+             "solution at the same nodes. " + NOISY_NOTE + "\n"]
     headline = []
     for path in paths:
         t = load_table(path)
@@ -117,8 +119,8 @@ def main(out_dir, paths):
                          f"{pct(get(r, 'errors', 'vs_averaged_direct_sph', 'fluid_nodes', 'max_rel'))} | "
                          f"{pct(get(r, 'errors', 'vs_averaged_direct_sph', 'interior', 'max_rel'))} | "
                          f"{pct(get(r, 'errors', 'vs_averaged_direct_sph', 'peak_relative_difference'))} | "
-                         f"{fmt(total_seconds(r))} | {fmt(timing.get('repeats', 1))} | {fmt(timing.get('spread'))} | "
-                         f"{fmt(get(r, 'cost', 'speed_up'))} |")
+                         f"{fmt(total_seconds(r))} | {fmt(timing.get('repeats', 1))} | {pct(timing.get('spread'))} | "
+                         f"{speed_up_cell(get(r, 'cost', 'speed_up'), timing.get('spread'))} |")
         if rows:
             best = min(rows, key=rank)
             ref = reference_error(best)

@@ -10,7 +10,7 @@ cases with noise where the method ran (status not numerical_issue), and the dete
 import json
 import sys
 
-from summary_util import load_table
+from summary_util import load_table, pct
 from collections import defaultdict
 
 
@@ -74,7 +74,7 @@ print("| problem | kappa |")
 print("|---|---|")
 for k, v in kappa.items():
     print(f"| {k} | {'>= 1e16 (sigma_min at rounding level)' if v is None else f'{v:.3g}'} |")
-print("\n## Every noisy case (relative errors)\n")
+print("\n## Every noisy case (relative errors of the solution, in %)\n")
 print("| problem | noise | method | status | rule error | best error | ratio | chosen / best parameter |")
 print("|---|---|---|---|---|---|---|---|")
 for r in rows:
@@ -83,7 +83,7 @@ for r in rows:
     e = r["errors"]
     fmt = lambda v: "-" if v is None else f"{v:.3g}"
     print(f'| {problem_label(r["params"]["problem"])} | {r["params"]["noise"]:g} | {r["params"]["method"]["name"]} | '
-          f'{r["deconvolution_status"]} | {fmt(e.get("relative_error"))} | {fmt(e.get("best_relative_error"))} | '
+          f'{r["deconvolution_status"]} | {pct(e.get("relative_error"))} | {pct(e.get("best_relative_error"))} | '
           f'{fmt(e.get("ratio_to_best"))} | {fmt(e.get("chosen_parameter"))} / {fmt(e.get("best_parameter"))} |')
 
 if rule_rows:

@@ -8,7 +8,7 @@ Every number printed is read from the table.
 import json
 import sys
 
-from summary_util import fmt, load_table, dirty_mark
+from summary_util import dirty_mark, fmt, load_table, pct, spct
 
 
 def main(path):
@@ -19,7 +19,7 @@ def main(path):
     print(f"Generated from `{path}` by `python3 experiments/summaries/summarize_two_phase.py {path}`; commit "
           f"`{prov['git_commit']}`, {prov['compiler']}, {prov['build_type']}, {prov['threads']} thread(s), "
           f"{prov['date_utc']}, command `{prov['command']}`. Table complete: {table['complete']}.\n")
-    print("Errors are relative to the analytic peak velocity. *max* / *L2*: every fluid particle against the "
+    print("Errors in % of the analytic peak velocity. *max* / *L2*: every fluid particle against the "
           "piecewise-parabolic solution; *interior* / *wall band*: particles at least 3 eta' from a wall / nearer; "
           "*near if* / *away*: particles within one SPH support (3 eps') of a phase interface / farther; "
           "*avg int*: averaged SPH velocity against the Gaussian average of the analytic solution at mesh nodes at least "
@@ -40,9 +40,9 @@ def main(path):
         d = i.get("density_deviation_near_interfaces", {})
         drho = f"{fmt(d.get('min'))} / {fmt(d.get('max'))}" if d else "-"
         vdw = vdw or i.get("van_der_waals")
-        print(f"| {p['case']}{dirty_mark(r)} | {p['pair_viscosity_mean']} | {r['status']} | {fmt(g('all'))} | {fmt(g('all', 'l2_rel'))} | "
-              f"{fmt(g('interior'))} | {fmt(g('wall_band'))} | {fmt(g('near_interfaces'))} | "
-              f"{fmt(g('away_from_interfaces'))} | {fmt(ai)} | {fmt(e.get('peak_relative_difference'))} | "
+        print(f"| {p['case']}{dirty_mark(r)} | {p['pair_viscosity_mean']} | {r['status']} | {pct(g('all'))} | {pct(g('all', 'l2_rel'))} | "
+              f"{pct(g('interior'))} | {pct(g('wall_band'))} | {pct(g('near_interfaces'))} | "
+              f"{pct(g('away_from_interfaces'))} | {pct(ai)} | {spct(e.get('peak_relative_difference'))} | "
               f"{fmt(i.get('max_y_displacement_dx'))} | {fmt(i.get('particles_outside_phase_region'))} | {drho} | "
               f"{fmt(c.get('steps'))} | {fmt(c.get('dt'))} | {fmt(c.get('model_time'))} | {fmt(c.get('wall_seconds'))} |")
     if vdw:

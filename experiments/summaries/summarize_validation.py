@@ -8,7 +8,7 @@ import json
 import math
 import sys
 
-from summary_util import fmt, load_table, dirty_mark
+from summary_util import dirty_mark, fmt, load_table, pct, spct
 
 
 def main(path):
@@ -19,7 +19,7 @@ def main(path):
     print(f"Generated from `{path}`; commit `{prov['git_commit']}`, {prov['compiler']}, {prov['build_type']}, "
           f"{prov['threads']} thread(s), {prov['date_utc']}, command `{prov['command']}`. "
           f"Table complete: {table['complete']}.\n")
-    print("Errors are relative to the analytic peak velocity. *particles*: every fluid particle against (5.15)/(D.3); "
+    print("Errors in % of the analytic peak velocity. *particles*: every fluid particle against (5.15)/(D.3); "
           "*avg interior* / *avg band*: the averaged SPH velocity against the Gaussian average of the analytic "
           "solution, at nodes at least 3 eta' from the walls / nearer. *shift*: effective wall position from a "
           "parabola fitted to the particle velocities, in lattice spacings beyond the nominal wall (uniform force "
@@ -35,8 +35,8 @@ def main(path):
         ai = e.get("averaged_vs_averaged_analytic", {}).get("interior", {}).get("max_rel")
         ab = e.get("averaged_vs_averaged_analytic", {}).get("wall_band", {}).get("max_rel")
         print(f"| {p['name']}{dirty_mark(r)} | {p['n_y']} | {p['wall_model']} | {r['status']} | {fmt(c.get('steps'))} | {fmt(c.get('dt'))} | "
-              f"{fmt(c.get('wall_seconds'))} | {fmt(c.get('particle_steps_per_second'))} | {fmt(pa)} | {fmt(ai)} | {fmt(ab)} | "
-              f"{fmt(wo.get('shift_in_spacings'))} | {fmt(wo.get('centre_overprediction'))} | {fmt(wo.get('expected_2dx_over_w'))} |")
+              f"{fmt(c.get('wall_seconds'))} | {fmt(c.get('particle_steps_per_second'))} | {pct(pa)} | {pct(ai)} | {pct(ab)} | "
+              f"{fmt(wo.get('shift_in_spacings'))} | {spct(wo.get('centre_overprediction'))} | {pct(wo.get('expected_2dx_over_w'))} |")
         if pa is not None:
             groups.setdefault((p["name"], p["wall_model"]), []).append((p["n_y"], pa))
     print("\nObserved order of the particle max error between consecutive resolutions:\n")

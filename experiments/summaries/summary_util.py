@@ -14,6 +14,38 @@ def fmt(x, digits=3):
     return f"{x:.{digits}g}"
 
 
+def pct(x, digits=3):
+    """A fraction as a percentage cell: '-' for missing, else 100 x to `digits` significant digits and ' %'."""
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "-"
+    return f"{100.0 * x:.{digits}g} %"
+
+
+def spct(x, digits=3):
+    """A signed fraction (a relative difference) as a percentage cell, the sign always shown."""
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "-"
+    return f"{100.0 * x:+.{digits}g} %"
+
+
+NOISY_SPREAD = 0.10
+NOISY_NOTE = ("*noisy*: the reduced model's repeated runs spread by more than 10 % ((median - min) / min): its time, "
+              "and so the speed-up, is not resolved to better than that spread (load from other work).")
+
+
+def noisy_note(lines):
+    """[blank line, NOISY_NOTE] when some line marks a speed-up " (noisy)", else nothing."""
+    return ["", NOISY_NOTE] if any(" (noisy)" in line for line in lines) else []
+
+
+def speed_up_cell(speed_up, spread):
+    """A speed-up for a table, marked " (noisy)" where the repeated runs' spread exceeds NOISY_SPREAD."""
+    text = fmt(speed_up)
+    if speed_up is not None and spread is not None and spread > NOISY_SPREAD:
+        text += " (noisy)"
+    return text
+
+
 def get(d, *keys):
     """d[k1][k2]..., or None where a key is missing."""
     for k in keys:
@@ -100,6 +132,22 @@ def dirty_mark(row):
     """" [dirty build]" for a row computed by a build with uncommitted changes (for views that print no label)."""
     p = row.get("provenance")
     return " [dirty build]" if isinstance(p, dict) and p.get("dirty") else ""
+
+
+def log_ticks(ax, which="both"):
+    """Enough labelled ticks on log axes: at 1, 2 and 5 per decade where the axis spans few decades (matplotlib
+    labels only the powers of ten, one label or none on an axis within a decade), as plain numbers."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+    axes = {"x": [ax.xaxis], "y": [ax.yaxis], "both": [ax.xaxis, ax.yaxis]}[which]
+    for axis in axes:
+        if axis.get_scale() != "log":
+            continue
+        lo, hi = sorted(axis.get_view_interval())
+        if lo <= 0 or hi / lo > 1e4:
+            continue
+        axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+        axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        axis.set_minor_formatter(NullFormatter())
 
 
 def pyplot_or_none():

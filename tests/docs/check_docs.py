@@ -15,7 +15,7 @@ import subprocess
 import sys
 
 TOP = ("core/", "strategies/", "experiments/", "tests/", "bench/", "results/", "docs/", "scripts/", "examples/",
-       "cmake/", ".ci/")
+       "cmake/", ".ci/", "python/")
 PLACEHOLDER = re.compile(r"[<>*${}]|\bDIR\b|SPEC|TABLE|NAME|\bN\b|\.\.\.|\bi/N\b|<id>")
 
 

@@ -1,6 +1,6 @@
-// Issue 25 at the command line: every command checks its writes (items 6), the run's lock is never written
-// through a planted link (item 7), H5Part steps are found by name, index or time (item 2), and a snapshot of
-// huge but finite velocities gives finite error norms (item 1).
+// Reliability at the command line: every command checks its writes, the run's lock is never written through a
+// planted link, H5Part steps are found by name, index or time, and a snapshot of huge but finite velocities gives
+// finite error norms.
 #include <gtest/gtest.h>
 
 #include <cmath>

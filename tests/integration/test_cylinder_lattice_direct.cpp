@@ -1,6 +1,6 @@
 // Direct SPH of Stokes flow through the periodic lattice of cylinders at a coarse resolution (n = 48), through the
 // direct_sph_validation kind's permeability path (experiments/kinds/permeability_validation.cpp): steady state by
-// the permeability itself, k against the collocation reference, for both radii of issue 21 (a = 0.2 L, 0.3 L).
+// the permeability itself, k against the collocation reference, for both committed radii (a = 0.2 L, 0.3 L).
 //
 // What the resolution study measured (results/cylinders/direct/table.md, n = 48, 96, 192): the zero-velocity solid
 // puts the no-slip surface 0.35-0.51 lattice spacings inside the nominal cylinder at every n (the channels' known

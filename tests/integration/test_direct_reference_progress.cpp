@@ -1,5 +1,5 @@
-// A direct reference's steady test on a fine observation mesh (issue 25: observe_spacing_over_eta = 0.01 on a 2D
-// reference took 72 s with one progress line): the run says up front how many nodes each average fills, and each
+// A direct reference's steady test on a fine observation mesh (observe_spacing_over_eta = 0.01 on a
+// 2D reference once took 72 s with one progress line): the run says up front how many nodes each average fills, and each
 // average slower than 2 s is reported (progress interval 0 here: every one).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// A truncated H5Part file (issue 25): refused with one message naming the file and its declared size, before
+// A truncated H5Part file: refused with one message naming the file and its declared size, before
 // HDF5 opens it (HDF5 1.10 leaked the file's identifiers on that path and printed "infinite loop closing
 // library" and ~500 E,E,E at exit). Run through the command line, since the noise came at process exit.
 #include <gtest/gtest.h>

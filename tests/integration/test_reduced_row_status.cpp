@@ -1,6 +1,6 @@
 // A reduced row's status is the worst of its parts (experiments/kinds/reduced_sections.hpp,
 // propagate_worst_status): a closure whose deconvolutions report numerical issues, or a direct reference that did
-// not reach its steady state, does not leave the row "ok" (issue 25).
+// not reach its steady state, does not leave the row "ok".
 #include <gtest/gtest.h>
 
 #include "core/base/params.hpp"

@@ -91,7 +91,7 @@ TEST(ReferenceStoreCli, TwoProcessesNeedingTheSameReferenceComputeItOnce) {
   EXPECT_EQ(closurelab::ReferenceStore(store).list().size(), 1u);
 }
 
-// A shared store on a read-only mount (issue 25): its entries are reused without taking a lock, a missing one is
+// A shared store on a read-only mount: its entries are reused without taking a lock, a missing one is
 // computed (not stored) with a note, and the run exits 0. Needs a read-only folder: a private read-only bind
 // mount (root with unshare), else the permission bits (a non-root user).
 TEST(ReferenceStoreCli, AReadOnlyStoreIsReadWithoutItsLock) {

@@ -112,7 +112,7 @@ TEST(SnapshotClosure, BadFilesAreNamed) {
   EXPECT_EQ(o.code, 1);
   const json table = json::parse(read_text(work / "out2" / "bad.json"));
   EXPECT_NE(table["rows"][0].dump().find("outside the scene's box"), std::string::npos) << table.dump();
-  // A file cut at a line boundary (issue 25): every line is well formed, but a lattice row's last particle is
+  // A file cut at a line boundary: every line is well formed, but a lattice row's last particle is
   // missing; refused by the particle count, with the file named.
   const std::string whole = (work / "whole.csv").string();
   ASSERT_EQ(run_shell(work, "python3 " + script + " " + whole + " --n-y 16 --n-x 12 --profile poiseuille").code, 0);

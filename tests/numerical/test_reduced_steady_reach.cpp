@@ -1,4 +1,4 @@
-// The reduced models' own run control is checked at validation as the direct SPH's is (issue 25): a steady test
+// The reduced models' own run control is checked at validation as the direct SPH's is: a steady test
 // whose window cannot see the scene's slowest relaxation at the coarse step is refused (check_steady_reach at
 // the coarse spacing), and a target_time beyond max_steps is refused (check_steps_reach_target). The refusal is
 // earned: the reduced kolmogorov model with such a window stops "converged" more than kMaxSteadyDistance from

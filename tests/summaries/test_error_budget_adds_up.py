@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The error budget adds up (issue 26): on the committed uniform-channel budget table, the per-node terms that
+"""The error budget adds up: on the committed uniform-channel budget table, the per-node terms that
 experiments/summaries/error_budget_terms.py computes along the oracle chain sum to the paper's formulation's
 error at every node, and their shifts to its shift, to round-off; independently of that code, the total is the
 engine's recorded error (its max over nodes over the analytic peak read from the profile, and its l2 norm

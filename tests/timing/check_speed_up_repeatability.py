@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Two identical runs of a front give speed-ups within their stated spread (issue 22's acceptance).
+"""Two identical runs of a front give speed-ups within their stated spread (the timing acceptance).
 
 Usage: python3 tests/timing/check_speed_up_repeatability.py CLOSURELAB SPEC.json WORK_DIR
            [--cells LABEL[|LABEL...]] [--tolerance range|spread|resolved] [--measure wall|cpu]

@@ -1,4 +1,4 @@
-// The cylinder-lattice scene (issue 21 §2) and its reference permeability: our boundary-collocation Stokes solve
+// The cylinder-lattice scene (periodic square array, the porous-medium scene) and its reference permeability: our boundary-collocation Stokes solve
 // of the square array against Sangani & Acrivos's (1982) table and against the Hasimoto / Sangani–Acrivos
 // low-concentration series, its convergence in the number of harmonics; the scene's particles, reference and bad
 // input.
@@ -58,7 +58,7 @@ TEST(SquareArrayStokes, ConvergedInTheHarmonics) {
 // is valid. Its error has two parts: the printed coefficients' rounding (half a unit of the third decimal each:
 // 5e-4 (1 + c^2 + c^3) in D) and the truncation, taken as the size of the last term kept (2.038 c^3, the series
 // being asymptotic with terms falling at these c). Measured: 1.1e-4 at c = 0.01, 2.2e-4 at 0.05, 8.0e-4 at 0.1.
-// At c = 0.3 the series is 12 % low (issue 21): it is not the reference there.
+// At c = 0.3 the series is 12 % low (against the collocation solve): it is not the reference there.
 TEST(SquareArrayStokes, SeriesAgreesAtLowConcentration) {
   for (const double c : {0.005, 0.01, 0.02, 0.05, 0.1}) {
     const double d = -0.5 * std::log(c) - 0.738 + c - 0.887 * c * c + 2.038 * c * c * c;

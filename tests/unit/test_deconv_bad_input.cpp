@@ -88,7 +88,7 @@ TEST(DeconvBadInput, MethodsThatNeedASquareOperatorSaySo) {
   EXPECT_TRUE(r.x.allFinite());
 }
 
-// GCV works with every regularizer and backend now (issue 26); what remains refused: the paper form's
+// GCV works with every regularizer and backend now (the general-form Tikhonov); what remains refused: the paper form's
 // (A + alpha L'L) x = b has no filter factors, and a regularizer whose null space A annihilates leaves the
 // minimizer of ||Ax - b||^2 + alpha ||Lx||^2 not unique.
 TEST(DeconvBadInput, TikhonovRefusesTheSpectralPaperFormWithADifferenceAndIntersectingNullSpaces) {

@@ -87,7 +87,7 @@ TEST(DeconvCommand, BadInputExitsNonZeroWithAMessage) {
 }
 
 TEST(DeconvCommand, IssueFourteenBigMatrixIsSolvedNotEmpty) {
-  // Issue 14 item 1: cgls on diag(1e300, 2e300) returned a 0 x 1 "solution" marked converged (and the
+  // A reported bad input: cgls on diag(1e300, 2e300) returned a 0 x 1 "solution" marked converged (and the
   // relative error then read past it: SIGSEGV). Now the operator is rescaled and x = (1e-300, 5e-301).
   const std::string d = dir();
   std::ofstream(d + "/big.mtx") << "%%MatrixMarket matrix array real general\n2 2\n1e300\n0\n0\n2e300\n";

@@ -1,4 +1,4 @@
-// Issue 25, item 1, at `closurelab deconvolve`: the relative error of a solution of 1e200 is a finite number
+// Finite error norms at `closurelab deconvolve`: the relative error of a solution of 1e200 is a finite number
 // (before: ||x - x_true|| / ||x_true|| = inf / inf, printed as null).
 #include <gtest/gtest.h>
 #include <unistd.h>

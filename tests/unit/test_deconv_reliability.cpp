@@ -1,4 +1,4 @@
-// Issue 25, items 1, 4 and 5: no deconvolution result is `converged` when it fits the data no better than the
+// No deconvolution result is `converged` when it fits the data no better than the
 // trivial answer x = 0, divides by singular values below the numerical rank, solves with a factorization that is
 // singular to working precision, or reports a non-finite norm for finite data.
 #include <gtest/gtest.h>
@@ -135,7 +135,7 @@ TEST(DeconvReliability, SolutionNormOfAHugeButFiniteSolutionIsFinite) {
   }
 }
 
-// Item 1, the issue's case: diag(1, 1e-150, 1e-300), b = (1, 1, 1), tsvd k = 3 gave the right x with
+// The reported case: diag(1, 1e-150, 1e-300), b = (1, 1, 1), tsvd k = 3 gave the right x with
 // `solution_norm: null` (||x||^2 = 1e600 overflows) while `converged`. The norm is now finite; k = 3 is above
 // the numerical rank (1: the others are below 3 eps sigma_1), so the result is a numerical_issue.
 TEST(DeconvReliability, TsvdOnAWidelyScaledDiagonalHasAFiniteNormAndAnHonestStatus) {

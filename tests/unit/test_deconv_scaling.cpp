@@ -26,7 +26,7 @@ DeconvolutionResult solve(const json& method, const ForwardOperator& a, const Ei
   return d->solve(b, delta);
 }
 
-// The big.mtx: diag(1e300, 2e300), b = (1, 1); x = (1e-300, 5e-301).
+// The reported big.mtx: diag(1e300, 2e300), b = (1, 1); x = (1e-300, 5e-301).
 TEST(DeconvScaling, HugeOperatorIsSolvedByEveryScaleInvariantMethod) {
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(2);
   const Eigen::Vector2d x_true(1e-300, 5e-301);

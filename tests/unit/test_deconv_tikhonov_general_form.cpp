@@ -1,4 +1,4 @@
-// Tikhonov's least-squares form with a general regularizer L (C = LᵀL) without the normal equations (issue 26):
+// Tikhonov's least-squares form with a general regularizer L (C = LᵀL) without the normal equations:
 // the transformation to standard form and one SVD (backend spectral: the generalized SVD's filter factors) and
 // the stacked QR of [A; √α L] (backends dense and sparse). Asserted: they equal the normal-equation solve where
 // that is well conditioned; at a small α on an ill-conditioned operator they stay accurate where the normal

@@ -50,7 +50,7 @@ TEST(IntegerParams, WideKindsAcceptTheirRangeOnly) {
 }
 
 TEST(JsonReader, DeepNestingIsRefusedBeforeAnyCopy) {
-  // 100,000 levels (the 200 kB spec) overflowed the stack in the recursive copies of the expansion.
+  // 100,000 levels (a reported 200 kB spec) overflowed the stack in the recursive copies of the expansion.
   const std::string deep = "{\"name\": \"x\", \"kind\": \"k\", \"base\": " + std::string(100000, '[') +
                            std::string(100000, ']') + "}";
   const std::string e = config_error([&] { parse_json_guarded(deep, "deep.json"); });
@@ -91,7 +91,7 @@ TEST(SpecTopLevel, TypesNamesAndCellsAreCheckedBeforeExpansion) {
 }
 
 TEST(MatrixMarketGuards, DeclaredSizesMustFitTheFile) {
-  // The 3-line file declaring 30000 x 30000 allocated 7 GB before failing.
+  // A reported 3-line file declaring 30000 x 30000 allocated 7 GB before failing.
   const fs::path big = scratch("big.mtx", "%%MatrixMarket matrix array real general\n30000 30000\n1\n");
   EXPECT_NE(config_error([&] { read_matrix_market(big.string()); }).find("declares"), std::string::npos);
   const fs::path nnz = scratch("nnz.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 5000000000000000000\n1 1 1\n");

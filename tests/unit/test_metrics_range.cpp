@@ -1,4 +1,4 @@
-// Issue 25, item 1: error norms of finite data are finite and do not depend on the data's scale. A CSV snapshot
+// Error norms of finite data are finite and do not depend on the data's scale. A CSV snapshot
 // with velocities of 1e154 gave l2_rel = 0 beside max_rel = 0.5 (the reference's sum of squares overflowed),
 // and at 1e200 every l2_rel was NaN (inf / inf), while the row said `ok`.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Issue 25, item 8: the partial table was rewritten after every cell, so a run's cost grew with the square of
+// The partial table was once rewritten after every cell, so a run's cost grew with the square of
 // its cells (1000 trivial cells: 197 s of wall time for 32 s of cells). The schedule that now decides the
 // rewrites, on a simulated clock (no timing here): cells of 1 ms whose table rewrite costs 10 us per row.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The reference store's metadata and folder hygiene (issue 25): an edited run record (status, steps) or an entry
+// The reference store's metadata and folder hygiene: an edited run record (status, steps) or an entry
 // of the old format without its checksum is not reused; `list` and the size count only entries (16 hex digits),
 // not a lock that is a folder, a cells/ folder or a writer's temporaries; a temporary over an hour old is removed
 // by the next write, a recent one is not.

@@ -38,7 +38,7 @@ TEST(RunProgress, SteadyStateIsCappedByMaxTime) {
   EXPECT_DOUBLE_EQ(e.fraction, 0.5);
 }
 
-// Issue 25 (smaller): an extreme legal parameter printed an 80-digit number of seconds left; durations are now
+// An extreme legal parameter once printed an 80-digit number of seconds left; durations are now
 // in readable units.
 TEST(RunProgress, DurationsAreInReadableUnits) {
   using closurelab::format_duration;

@@ -1,4 +1,4 @@
-// A steady test judged by model time (issue 25): windows and tolerances that cannot mean steady state are refused
+// A steady test judged by model time: windows and tolerances that cannot mean steady state are refused
 // at validation, and the committed specs' windows (W = 150..2400 steps at kappa 0.25, tolerance <= 1e-4) pass.
 #include <gtest/gtest.h>
 
@@ -23,7 +23,7 @@ json solver(double kappa, int window, double tol) {
 }  // namespace
 
 TEST(SteadyWindow, AWindowShorterThanOneViscousTimeOfTheSpacingIsRefused) {
-  // kappa = 1e-6, 100 steps: 1e-4 viscous times of the spacing; the issue's run said `converged` at 99 % error.
+  // kappa = 1e-6, 100 steps: 1e-4 viscous times of the spacing; a reported run said `converged` at 99 % error.
   const std::string e = config_error([] { check_time_loop(solver(1e-6, 100, 1e-3), "/solver"); });
   EXPECT_NE(e.find("/solver/steady_window"), std::string::npos) << e;
   EXPECT_NE(e.find("cannot mean steady state"), std::string::npos) << e;

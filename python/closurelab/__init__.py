@@ -1,0 +1,1 @@
+"""closurelab's Python helpers: `closurelab.tables` reads results tables into pandas and numpy."""

@@ -8,6 +8,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/memory_limit.hpp"
 #include "core/scenes/layered_scene.hpp"
+#include "core/scenes/taylor_green_scene.hpp"
 #include "core/base/registry.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_kernel.hpp"
@@ -47,6 +48,7 @@ Scene Scene::narrowest_strip() const {
 }
 
 double Scene::particle_mass() const {
+  if (mass_from_cell_volume) return rho0 * dx * dx;
   // m = rho0 / n0 with n0 the number density of the perfect lattice, so the SPH density at rest is rho0.
   const SmoothingKernel w = smoothing_kernel();
   const int reach = static_cast<int>(std::ceil(w.support() / dx)) + 1;
@@ -202,6 +204,7 @@ void register_scenes(Registry& r) {
   register_cellular_scene(r);
   register_cylinder_lattice_scene(r);
   register_cylinder_channel_scene(r);
+  register_taylor_green_scene(r);
   r.scenes.add({"poiseuille-uniform", "Poiseuille flow between walls at 3 eta' and L_y - 3 eta', uniform force (par. 5)",
                 channel_schema()},
                [](const json& p) {

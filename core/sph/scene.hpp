@@ -110,6 +110,27 @@ struct Scene {
     }
   };
   std::optional<CellularMode> cellular_mode;
+  // The Taylor–Green vortex of the "taylor-green" scene (core/scenes/taylor_green_scene.cpp; PySPH's
+  // taylor_green.py): in a doubly periodic box of side L, with k = 2π/L and b = −2k²ν (= −8π²/Re at L = U = 1),
+  //   u = −U e^{bt} cos kx sin ky,  v = U e^{bt} sin kx cos ky,  p = −¼ ρ U² e^{2bt} (cos 2kx + cos 2ky),
+  // an exact solution of the incompressible Navier–Stokes equations; the largest |v| over the box is U e^{bt}.
+  struct TaylorGreenVortex {
+    double wavenumber = 0.0;  // k
+    double velocity = 0.0;    // U
+    double decay_rate = 0.0;  // −b = 2 k² ν
+    double density = 1.0;     // ρ of the pressure
+    double factor(double t) const { return velocity * std::exp(-decay_rate * t); }
+    Vec2 velocity_at(double x, double y, double t) const {
+      const double f = factor(t);
+      return {-f * std::cos(wavenumber * x) * std::sin(wavenumber * y), f * std::sin(wavenumber * x) * std::cos(wavenumber * y)};
+    }
+    double pressure_at(double x, double y, double t) const {
+      const double f = factor(t);
+      return -0.25 * density * f * f * (std::cos(2.0 * wavenumber * x) + std::cos(2.0 * wavenumber * y));
+    }
+    double max_speed(double t) const { return factor(t); }
+  };
+  std::optional<TaylorGreenVortex> taylor_green;
   // Flow through a porous medium (cylinder-lattice; core/scenes/cylinder_lattice_scene.hpp): the number wanted is
   // the Darcy permeability k = μ ⟨u_x⟩ / (ρ g), ⟨u_x⟩ the x-velocity averaged over the whole periodic cell (the
   // solid counting zero) and g the body force per unit mass on the fluid; the scene states its reference value.
@@ -147,8 +168,11 @@ struct Scene {
   // the same on it; otherwise the scene itself.
   Scene narrowest_strip() const;
   // Lattice particles: (i + 1/2) dx, (j + 1/2) dx; walls and solids (is_solid) held fixed; mass so that the SPH density
-  // is rho0.
+  // is rho0 (or rho0 dx² where mass_from_cell_volume is set).
   ParticleSystem make_particles() const;
+  // The particle mass rho0 dx² (PySPH's examples: ρ0 times the lattice cell's area) instead of rho0 / n0, n0 the
+  // lattice's summation number density (whose SPH density at rest is exactly rho0).
+  bool mass_from_cell_volume = false;
   double particle_mass() const;
   double max_viscosity() const;
   int phase(double y) const { return phase_at ? phase_at(y) : 0; }

@@ -11,6 +11,8 @@
 // same bits, PairKernelIsa), then adds them row by row; the force pass sums each row's force on its particle in registers.
 // List pairs beyond the support contribute zero instead of being skipped; the reciprocals 1/n are taken once per
 // particle; only the fluid–wall pairs of ghost-velocity walls take the general path (their ghost velocity).
+// With SphEngineOptions::formulation = transport_velocity the force pass and the step are instead those of the
+// transport-velocity formulation (core/sph/transport_velocity.hpp: PySPH's TVFScheme); the density pass is shared.
 #include <array>
 #include <cstdint>
 #include <string_view>
@@ -22,6 +24,7 @@
 #include "core/sph/neighbour_search.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_kernel.hpp"
+#include "core/sph/transport_velocity.hpp"
 
 namespace closurelab {
 
@@ -58,16 +61,21 @@ struct PairBlocks;  // the list's rows and blocks, as the pair passes read them 
 
 class SphEngine {
  public:
-  SphEngine(const Scene& scene, ParticleSystem& particles);
+  // Refuses (std::invalid_argument) the transport-velocity formulation where the particles include fixed ones
+  // (walls, solids): their generalized wall condition is not built yet.
+  SphEngine(const Scene& scene, ParticleSystem& particles, const SphEngineOptions& options = {});
 
   // Number densities and accelerations at the current positions and velocities.
   void compute_accelerations();
   // One velocity-Verlet step (kick–drift–kick; the second force evaluation uses the predicted velocity,
-  // since the viscous force depends on velocities). One force evaluation per step.
+  // since the viscous force depends on velocities). One force evaluation per step. Under the transport-velocity
+  // formulation, its step instead (transport_velocity.hpp: PySPH's TransportVelocityStep in PEC mode).
   void step(double dt);
   // (5.21)–(5.22) with Δ = ε': κ min(ε' / (c + max|v|), ρ ε'² / (μ_max β)). The signal speed of a weakly
   // compressible model is the sound speed plus the flow speed; β is the ghost-velocity wall's stiffening of
   // the fluid–wall viscous coupling (1 for zero-velocity walls), without which κ = 0.25 is unstable.
+  // Transport velocity: κ min(h / (c + U), ρ0 h² / (2 μ_max)), U the larger of the scene's analytic peak and
+  // max|v| (PySPH's taylor_green.py at κ = 0.25: 0.25 h/(c0 + U) and 0.125 h²/ν, a fixed step).
   double time_step(double kappa) const;
 
   // Pair forces at the current state (densities recomputed), for the averaging operators.
@@ -78,6 +86,13 @@ class SphEngine {
   const std::vector<double>& ay() const { return ay_; }
   const std::vector<std::int32_t>& moving() const { return moving_; }
   std::int64_t pair_evaluations() const { return pair_evaluations_; }
+  SphFormulation formulation() const { return options_.formulation; }
+  // Transport velocity only: ṽ and the background pressure's acceleration â − a of the last evaluation
+  // (empty under the standard formulation).
+  const std::vector<double>& transport_vx() const { return tvx_; }
+  const std::vector<double>& transport_vy() const { return tvy_; }
+  const std::vector<double>& background_ax() const { return bx_; }
+  const std::vector<double>& background_ay() const { return by_; }
   std::int64_t list_rebuilds() const { return list_rebuilds_; }
   std::size_t pair_count() const { return list_.pairs.size(); }
   std::size_t active_count() const { return active_.size(); }  // moving particles and the walls they reach
@@ -94,9 +109,20 @@ class SphEngine {
   Vec2 pair_force(std::int32_t i, std::int32_t j, std::size_t p, double p_over_n2_i, double p_over_n2_j) const;
   // Relative velocity used by the viscous term of pair (a, b) (ghost velocities for fluid–wall pairs).
   Vec2 relative_velocity(std::int32_t a, std::int32_t b) const;
+  // Transport velocity: the per-particle inputs of its pair pass at the current densities (ṽ = v at the first
+  // call), its force pass and step.
+  void prepare_transport_inputs();
+  void compute_transport_accelerations();
+  void transport_step(double dt);
 
   const Scene& scene_;
   ParticleSystem& ps_;
+  SphEngineOptions options_;
+  bool transport_ = false;          // options_.formulation == transport_velocity
+  double transport_eps_ = 0.0;      // ε = 0.01 h² of the viscous term
+  double background_pressure_ = 0.0;  // p_b
+  std::vector<TvfParticle> tvf_input_;
+  std::vector<double> tvx_, tvy_, bx_, by_;
   SmoothingKernel w_;
   double skin_, mass_, viscous_stiffening_ = 1.0;
   double unlike_excess_ = 0.0;  // added to P/n² of both particles of an unlike pair ((7.1) with k*)

@@ -177,5 +177,35 @@ void force_rows(const PairBlocks& g, std::size_t r0, std::size_t r1, const doubl
   }
 }
 
+// The force pass of the transport-velocity formulation (core/sph/transport_velocity.hpp) over rows [r0, r1): as
+// force_rows, with four values per pair from `pair` (i, j, p) -> (fx, fy, bx, by), the momentum force and the
+// background pressure's part, and four per particle in f.
+template <class PairTerms>
+void force_rows_with_background(const PairBlocks& g, std::size_t r0, std::size_t r1, const double* __restrict F,
+                                PairTerms pair, double* __restrict f) {
+  for (std::size_t r = r0; r < r1; ++r) {
+    const int i = g.row_i[r];
+    double sx = 0.0, sy = 0.0, tx = 0.0, ty = 0.0;
+    for (std::size_t p = g.row_begin[r], e = g.row_begin[r + 1]; p < e; ++p) {
+      if (F[p] == 0.0) continue;
+      const int j = g.pj[p];
+      double fx, fy, bx, by;
+      pair(i, j, p, fx, fy, bx, by);
+      sx += fx;
+      sy += fy;
+      tx += bx;
+      ty += by;
+      f[4 * j] -= fx;
+      f[4 * j + 1] -= fy;
+      f[4 * j + 2] -= bx;
+      f[4 * j + 3] -= by;
+    }
+    f[4 * i] += sx;
+    f[4 * i + 1] += sy;
+    f[4 * i + 2] += tx;
+    f[4 * i + 3] += ty;
+  }
+}
+
 }  // namespace pair_passes
 }  // namespace closurelab

@@ -53,7 +53,7 @@ SphRunResult SphRunResult::from_json(const json& j) {
 }
 
 SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRunOptions& opt) {
-  SphEngine engine(scene, ps);
+  SphEngine engine(scene, ps, opt.engine);
   engine.compute_accelerations();
   SteppedModel model;
   model.name = "direct SPH";
@@ -94,7 +94,16 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
 
 ParamSchema sph_solver_schema() {
   const SphRunOptions d;  // the defaults
-  ParamSchema schema{number_param("kappa", d.kappa, "time-step coefficient kappa of (5.21)-(5.22)", 0.0, 1.0, true)};
+  ParamSchema schema{
+      number_param("kappa", d.kappa, "time-step coefficient kappa of (5.21)-(5.22)", 0.0, 1.0, true),
+      string_param("formulation", std::string(name_of(d.engine.formulation)),
+                   "standard: weakly compressible SPH, pair force (5.1), velocity Verlet; transport_velocity: Adami, Hu "
+                   "& Adams (2013) as PySPH's TVFScheme (particles advected with a transport velocity, extra stress "
+                   "rho v (v~ - v), step kappa min(h/(c + U), h^2/(2 nu)); no walls or solids yet)",
+                   names_of<SphFormulation>()),
+      number_param("transport_background_pressure_factor", d.engine.transport_background_pressure_factor,
+                   "transport_velocity: background pressure p_b of the transport velocity / (rho0 c^2) (PySPH's pb / p0)",
+                   0.0, {}, true)};
   for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
   return schema;
 }
@@ -102,19 +111,43 @@ ParamSchema sph_solver_schema() {
 SphRunOptions sph_run_options_from(const json& s) {
   SphRunOptions o;
   o.kappa = s.at("kappa").get<double>();
+  o.engine.formulation = parse_name<SphFormulation>(s.at("formulation").get<std::string>(), "/formulation");
+  o.engine.transport_background_pressure_factor = s.at("transport_background_pressure_factor").get<double>();
   read_time_loop(s, o);
   return o;
 }
 
-double direct_step_bound(const Scene& scene, double kappa) {
+json upgraded_sph_solver_params(json solver) {
+  if (!solver.is_object()) return solver;
+  const SphRunOptions d;
+  if (!solver.contains("formulation")) solver["formulation"] = std::string(name_of(d.engine.formulation));
+  if (!solver.contains("transport_background_pressure_factor"))
+    solver["transport_background_pressure_factor"] = d.engine.transport_background_pressure_factor;
+  return solver;
+}
+
+double direct_step_bound(const Scene& scene, double kappa, SphFormulation formulation) {
+  if (formulation == SphFormulation::transport_velocity) {
+    const double h = scene.h;
+    double dt = 0.5 * scene.rho0 * h * h / scene.max_viscosity();
+    if (scene.sound_speed > 0.0) dt = std::min(dt, h / scene.sound_speed);
+    return kappa * dt;
+  }
   const double dx = scene.dx;
   double dt = scene.rho0 * dx * dx / scene.max_viscosity();
   if (scene.sound_speed > 0.0) dt = std::min(dt, dx / scene.sound_speed);
   return kappa * dt;
 }
 
+namespace {
+SphFormulation formulation_of(const json& s, const std::string& path) {
+  return s.contains("formulation") ? parse_name<SphFormulation>(s.at("formulation").get<std::string>(), path + "/formulation")
+                                   : SphFormulation::standard;
+}
+}  // namespace
+
 void check_run_can_finish(const Scene& scene, const json& s, const std::string& path) {
-  check_steps_reach_target(s, direct_step_bound(scene, s.at("kappa").get<double>()), path);
+  check_steps_reach_target(s, direct_step_bound(scene, s.at("kappa").get<double>(), formulation_of(s, path)), path);
 }
 
 double steady_reach_spacings(const Scene& scene, double spacing) {
@@ -135,7 +168,11 @@ void check_stepped_run(const Scene& scene, const json& s, double spacing, double
 }
 
 void check_direct_run(const Scene& scene, const json& s, const std::string& path) {
-  check_stepped_run(scene, s, scene.dx, direct_step_bound(scene, s.at("kappa").get<double>()), path);
+  const SphFormulation formulation = formulation_of(s, path);
+  if (formulation == SphFormulation::transport_velocity && (scene.has_walls || scene.solid_at))
+    throw ConfigError(path + "/formulation", "transport_velocity needs the generalized wall condition for the walls "
+                                             "and solids of scene '" + scene.name + "', not built yet");
+  check_stepped_run(scene, s, scene.dx, direct_step_bound(scene, s.at("kappa").get<double>(), formulation), path);
 }
 
 }  // namespace closurelab

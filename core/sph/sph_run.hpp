@@ -10,11 +10,13 @@
 #include "core/base/params.hpp"
 #include "core/base/time_loop.hpp"
 #include "core/sph/scene.hpp"
+#include "core/sph/transport_velocity.hpp"
 
 namespace closurelab {
 
 struct SphRunOptions : TimeLoopOptions {
   double kappa = 0.25;  // (5.21)–(5.22)
+  SphEngineOptions engine;  // the formulation (standard, or transport velocity) and its background pressure
   // The field whose change decides steady state; default: the x-velocities of the moving particles.
   // Lattice particles sliding past each other carry a persistent ~1e-4 velocity ripple, so experiments
   // pass the averaged (mesoscale) velocity here, the quantity they compare.
@@ -43,9 +45,12 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& particles, const
 // SphRunOptions{}'s (one source), and sph_run_options_from(resolved defaults) == SphRunOptions{} (tested).
 ParamSchema sph_solver_schema();
 SphRunOptions sph_run_options_from(const json& resolved_solver);
+// A solver section stored before `formulation` and `transport_background_pressure_factor` were added, with their
+// defaults (the standard formulation it ran): ExperimentKind::upgraded_params of the kinds with a direct solver.
+json upgraded_sph_solver_params(json solver);
 // The direct model's largest step, kappa·min(dx/c, rho dx²/mu_max) (the particles at rest; it only shrinks as they
-// move).
-double direct_step_bound(const Scene& scene, double kappa);
+// move); under the transport-velocity formulation kappa·min(h/c, rho h²/(2 mu_max)) (SphEngine::time_step).
+double direct_step_bound(const Scene& scene, double kappa, SphFormulation formulation = SphFormulation::standard);
 // Refuses (ConfigError at `path`/target_time) a target_time run that cannot reach its target within max_steps
 // (check_steps_reach_target at direct_step_bound). `path` is the solver section's JSON path.
 void check_run_can_finish(const Scene& scene, const json& resolved_solver, const std::string& path);
@@ -60,7 +65,9 @@ double steady_reach_spacings(const Scene& scene, double spacing);
 // (check_steady_reach across steady_reach_spacings, where the scene states its relaxation).
 void check_stepped_run(const Scene& scene, const json& resolved_solver, double spacing, double max_dt,
                        const std::string& path);
-// check_stepped_run for the direct SPH: spacing dx, steps of at most direct_step_bound.
+// check_stepped_run for the direct SPH: spacing dx, steps of at most direct_step_bound. The transport-velocity
+// formulation on a scene with walls or solids is refused (ConfigError at `path`/formulation): their generalized
+// wall condition is not built yet.
 void check_direct_run(const Scene& scene, const json& resolved_solver, const std::string& path);
 
 }  // namespace closurelab

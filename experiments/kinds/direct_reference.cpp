@@ -65,6 +65,12 @@ TensorMesh2D observe_mesh(const Scene& scene, double spacing) {
 json reference_key(const ReferenceRequest& r) {
   json solver = r.solver;
   solver.erase("progress_seconds");
+  // The standard formulation's key is the one it had before the formulation was a parameter (its stored runs stay
+  // valid), and the transport velocity's background pressure does not enter it.
+  if (solver.value("formulation", "standard") == "standard") {
+    solver.erase("formulation");
+    solver.erase("transport_background_pressure_factor");
+  }
   return {{"kind", "direct_sph"},
           {"engine_version", sph_engine_version},
           {"scene", r.scene},

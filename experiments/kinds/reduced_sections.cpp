@@ -7,6 +7,7 @@
 #include "core/base/errors.hpp"
 #include "core/closure/forward_operator.hpp"
 #include "core/sph/engine_version.hpp"
+#include "core/sph/sph_run.hpp"
 #include "experiments/runner/cell_config.hpp"
 #include "experiments/runner/provenance.hpp"
 
@@ -78,6 +79,8 @@ json upgraded_reduced_params(json params) {
   }
   if (params.contains("timing") && params["timing"].is_object() && !params["timing"].contains("min_seconds"))
     params["timing"]["min_seconds"] = 0.0;
+  if (params.contains("reference") && params["reference"].is_object() && params["reference"].contains("solver"))
+    params["reference"]["solver"] = upgraded_sph_solver_params(params["reference"]["solver"]);
   return params;
 }
 

@@ -36,7 +36,7 @@ json resolve_transient(const json& cell, const std::string& path);
 std::vector<double> transient_times(const json& transient, const Scene& scene);
 // What the reduced kinds' upgraded_params add to ExperimentKind::upgraded_params (the scene's and the strategies'
 // upgrades, which they apply first): transient.t_star renamed t_over_tau; timing.min_seconds, added since, set to
-// 0, as those rows were timed.
+// 0, as those rows were timed; the reference's direct solver its formulation (upgraded_sph_solver_params).
 json upgraded_reduced_params(json params);
 
 // "timing": how the reduced run is repeated (core/base/repeated_timing.hpp).

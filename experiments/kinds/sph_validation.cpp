@@ -5,7 +5,8 @@
 // Scenes with phase interfaces (layered-two-phase, §7) add errors near/away from the interfaces and the
 // final interface check (particles outside their phase region, row displacements, densities). Cellular
 // scenes (not x-invariant) are compared in 2D instead (experiments/kinds/cellular_validation.cpp), porous-medium
-// scenes by their permeability (experiments/kinds/permeability_validation.cpp).
+// scenes by their permeability (experiments/kinds/permeability_validation.cpp), the Taylor-Green vortex by the decay
+// of its largest speed (experiments/kinds/taylor_green_validation.cpp).
 #include "experiments/kinds/sph_validation.hpp"
 
 #include <Eigen/Dense>
@@ -23,6 +24,7 @@
 #include "experiments/kinds/cellular_validation.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/permeability_validation.hpp"
+#include "experiments/kinds/taylor_green_validation.hpp"
 #include "experiments/runner/provenance.hpp"
 
 namespace closurelab {
@@ -134,14 +136,22 @@ class SphValidation : public ExperimentKind {
             {"averaging", "the averaging mesh", "", averaging_schema()}};
   }
 
+  json upgraded_params(json stored) const override {
+    stored = ExperimentKind::upgraded_params(std::move(stored));
+    if (stored.is_object() && stored.contains("solver")) stored["solver"] = upgraded_sph_solver_params(stored["solver"]);
+    return stored;
+  }
+
   json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
     check_keys(cell, path, {"scene", "kernel", "solver", "averaging"});
     json out;
     auto scene = build_scene(cell, path, reg, &out["scene"]);
-    if (!scene->analytic_vx && !scene->cellular_mode && !scene->permeability)
+    if (!scene->analytic_vx && !scene->cellular_mode && !scene->permeability && !scene->taylor_green)
       throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution or reference");
     build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["solver"] = resolve_section(cell, "solver", sph_solver_schema(), path);
+    if (scene->taylor_green && out["solver"].at("mode") != "target_time")
+      throw ConfigError(path + "/solver/mode", "the Taylor-Green vortex decays to rest: run it to a target_time");
     check_time_loop(out["solver"], path + "/solver");
     check_direct_run(*scene, out["solver"], path + "/solver");
     out["averaging"] = resolve_section(cell, "averaging", averaging_schema(), path);
@@ -157,6 +167,11 @@ class SphValidation : public ExperimentKind {
       SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
       opt.progress = progress;
       return run_permeability_validation(*scene, opt);
+    }
+    if (scene->taylor_green) {  // the decay of the largest speed against the exact one
+      SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
+      opt.progress = progress;
+      return run_taylor_green_validation(*scene, opt);
     }
     if (scene->cellular_mode) {
       SphRunOptions opt = sph_run_options_from(cfg.at("solver"));

@@ -1,0 +1,79 @@
+#include "experiments/kinds/taylor_green_validation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/base/metrics.hpp"
+#include "core/sph/sph_engine.hpp"
+#include "experiments/runner/provenance.hpp"
+
+namespace closurelab {
+
+json run_taylor_green_validation(const Scene& scene, SphRunOptions opt) {
+  const Scene::TaylorGreenVortex& tg = scene.taylor_green.value();
+  constexpr int kSnapshots = 20;
+  opt.snapshot_times.clear();
+  for (int k = 1; k <= kSnapshots; ++k) opt.snapshot_times.push_back(opt.target_time * k / kSnapshots);
+  json times = json::array(), computed = json::array(), exact = json::array(), relative = json::array();
+  double worst = 0.0, last = 0.0;
+  opt.on_snapshot = [&](double t, const ParticleSystem& ps) {
+    double v2 = 0.0;
+    for (std::size_t a = 0; a < ps.size(); ++a)
+      if (!ps.fixed[a]) v2 = std::max(v2, ps.vx[a] * ps.vx[a] + ps.vy[a] * ps.vy[a]);
+    const double v = std::sqrt(v2), e = tg.max_speed(t), err = std::abs(v - e) / e;
+    times.push_back(t);
+    computed.push_back(v);
+    exact.push_back(e);
+    relative.push_back(err);
+    worst = std::max(worst, err);
+    last = err;
+  };
+  ParticleSystem ps = scene.make_particles();
+  const SphRunResult sph = run_direct_sph(scene, ps, opt);
+  json row;
+  row["status"] = row_status(sph.status);
+  row["direct_sph"] = sph.to_json();
+  if (!sph.message.empty()) row["message"] = sph.message;
+  row["scene_derived"] = {{"dx", scene.dx},
+                          {"h", scene.h},
+                          {"sound_speed", scene.sound_speed},
+                          {"particle_mass", scene.particle_mass()},
+                          {"kinematic_viscosity", scene.phase_viscosity[0] / scene.rho0},
+                          {"decay_rate", tg.decay_rate},
+                          {"formulation", name_of(opt.engine.formulation)}};
+  if (sph.status == Status::numerical_issue) return row;
+  json errors;
+  errors["max_speed"] = {{"times", times},           {"computed", computed}, {"exact", exact},
+                         {"relative_error", relative}, {"worst", worst},       {"final", last}};
+  // The particles against the exact field at the end, relative to its largest speed.
+  std::vector<std::size_t> moving;
+  for (std::size_t a = 0; a < ps.size(); ++a)
+    if (!ps.fixed[a]) moving.push_back(a);
+  const Eigen::Index np = static_cast<Eigen::Index>(moving.size());
+  Eigen::VectorXd ux(np), uy(np), rx(np), ry(np);
+  for (Eigen::Index i = 0; i < np; ++i) {
+    const std::size_t a = moving[i];
+    const Vec2 v = tg.velocity_at(ps.x[a], ps.y[a], sph.time);
+    ux[i] = ps.vx[a], uy[i] = ps.vy[a], rx[i] = v.x(), ry[i] = v.y();
+  }
+  errors["particles_vs_exact"] = vector_error_norms(ux, uy, rx, ry, tg.max_speed(sph.time)).to_json();
+  // The disorder: the spread of the summation number density at the end (on the lattice it is uniform).
+  ParticleSystem probe = ps;
+  SphEngine engine(scene, probe, opt.engine);
+  engine.compute_accelerations();
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0.0;
+  for (std::size_t a : moving) {
+    const double n = engine.number_density()[a];
+    lo = std::min(lo, n), hi = std::max(hi, n), sum += n;
+  }
+  const double mean = sum / static_cast<double>(moving.size());
+  errors["number_density"] = {{"spread_over_mean", (hi - lo) / mean},
+                              {"max_deviation_from_mean", std::max(hi - mean, mean - lo) / mean}};
+  row["errors"] = errors;
+  row["cost"] = sph.cost_json(0.0);
+  row["cost"]["peak_memory_mib"] = peak_memory_mib();
+  return row;
+}
+
+}  // namespace closurelab

@@ -106,6 +106,9 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     } catch (const ConfigError& e) {
       throw ConfigError(path + e.path(), e.message());
     }
+    if (out["reference"]["direct_sph"].get<bool>() && out["reference"]["file"].get<std::string>().empty())
+      check_observe_mesh(*scene, out["reference"]["observe_spacing_over_eta"].get<double>() * scene->eta,
+                         path + "/reference/observe_spacing_over_eta");
     return out;
   }
 

@@ -36,7 +36,8 @@ Field mode_field(const TensorMesh2D& mesh, double k, double amplitude) {
   return f;
 }
 
-Eigen::VectorXd speed(const Field& f) { return (f.x.array().square() + f.y.array().square()).sqrt(); }
+// By hypot: a speed of 1e160 squared overflows (it made the scale infinite and every max_rel 0).
+Eigen::VectorXd speed(const Field& f) { return vector_magnitudes(f.x, f.y); }
 
 // The least-squares amplitude of a node field on the mode: Σ v · m / Σ |m|².
 double fitted_amplitude(const Field& f, const Field& unit) {

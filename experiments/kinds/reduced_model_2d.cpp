@@ -101,6 +101,13 @@ class ReducedModel2D : public ExperimentKind {
     } catch (const ConfigError& e) {
       throw ConfigError(path + e.path(), e.message());
     }
+    {  // the operator's shape (make_averaging_operator_2d): the coarse mesh's data, the coarse or lattice unknowns
+      const TensorMesh2D coarse = coarse_mesh_2d(*scene, *kernel, options(out).spacing_over_eta);
+      const Discretization disc = options(out).discretization;
+      const long lattice = static_cast<long>(scene->nx) * scene->ny, data = coarse.nx() * static_cast<long>(coarse.ny());
+      check_operator_shape(out["closure"], disc == Discretization::fine_fine ? lattice : data,
+                           disc == Discretization::coarse_coarse ? data : lattice, path);
+    }
     return out;
   }
 

@@ -60,20 +60,29 @@ json parse_json_guarded(const std::string& text, const std::string& source) {
   }
 }
 
-json read_json_file_guarded(const std::string& file) {
+std::string read_text_file_guarded(const std::string& file) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw ConfigError("", "cannot open '" + file + "' (no such file)");
+  // Checked before opening: a FIFO blocks the open itself, a device such as /dev/zero never ends.
   if (!std::filesystem::is_regular_file(file, ec)) throw ConfigError("", "cannot open '" + file + "': not a regular file");
   const auto bytes = std::filesystem::file_size(file, ec);
   if (ec) throw ConfigError("", "cannot open '" + file + "': " + ec.message());
   if (bytes > static_cast<std::uintmax_t>(kJsonMaxBytes))
     throw ConfigError("", "'" + file + "' has " + std::to_string(bytes) + " bytes, above the JSON reader's limit of " +
                               std::to_string(kJsonMaxBytes));
-  std::ifstream in(file);
+  std::ifstream in(file, std::ios::binary);
   if (!in) throw ConfigError("", "cannot open '" + file + "'");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_json_guarded(ss.str(), file);
+  // At most the limit, should the file have grown since (or been replaced by something that does not end).
+  std::string text(static_cast<std::size_t>(kJsonMaxBytes) + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) throw ConfigError("", "cannot read '" + file + "'");
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > static_cast<std::size_t>(kJsonMaxBytes))
+    throw ConfigError("", "'" + file + "' grew above the JSON reader's limit of " + std::to_string(kJsonMaxBytes) +
+                              " bytes while it was read");
+  return text;
 }
+
+json read_json_file_guarded(const std::string& file) { return parse_json_guarded(read_text_file_guarded(file), file); }
 
 }  // namespace closurelab

@@ -15,7 +15,11 @@ inline constexpr long kJsonMaxBytes = 64L << 20;  // 64 MiB
 // Parses `text`; `source` names it in messages.
 json parse_json_guarded(const std::string& text, const std::string& source);
 
-// Reads `file` (a regular file of at most kJsonMaxBytes) and parses it with parse_json_guarded.
+// The text of `file`: a regular file (checked before it is opened: a FIFO would block, /dev/zero never end) of at
+// most kJsonMaxBytes, and no more than that is read. ConfigError otherwise.
+std::string read_text_file_guarded(const std::string& file);
+
+// Reads `file` (read_text_file_guarded) and parses it with parse_json_guarded.
 json read_json_file_guarded(const std::string& file);
 
 }  // namespace closurelab

@@ -25,9 +25,20 @@ double relative_l2(double num, double den, double top, const Visit& visit) {
       den += (r / top) * (r / top);
     });
   }
-  return den > 0 ? std::sqrt(num / den) : (safe ? std::sqrt(num) : top * std::sqrt(num));
+  // A vanishing reference has no relative error: NaN (JSON null) unless the difference vanishes too, never the
+  // absolute ‖d‖₂ read as a relative one.
+  return den > 0 ? std::sqrt(num / den) : num == 0 ? 0.0 : std::numeric_limits<double>::quiet_NaN();
+}
+
+// A norm relative to an unusable scale is no result: both norms NaN (JSON null).
+void mark_unusable_scale(ErrorNorms& e, double scale) {
+  if (usable_scale(scale)) return;
+  e.max_rel = std::numeric_limits<double>::quiet_NaN();
+  e.l2_rel = std::numeric_limits<double>::quiet_NaN();
 }
 }  // namespace
+
+bool usable_scale(double scale) { return std::isfinite(scale) && scale > 0; }
 
 double robust_norm(const Eigen::VectorXd& v) {
   const double n = v.norm();
@@ -38,7 +49,8 @@ double robust_norm(const Eigen::VectorXd& v) {
 
 json ErrorNorms::to_json() const {
   if (count == 0) return {{"max_rel", nullptr}, {"l2_rel", nullptr}, {"count", 0}};  // an empty subset has no error
-  return {{"max_rel", max_rel}, {"l2_rel", l2_rel}, {"count", count}};
+  const auto value = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  return {{"max_rel", value(max_rel)}, {"l2_rel", value(l2_rel)}, {"count", count}};
 }
 
 ErrorNorms error_norms(const Eigen::VectorXd& u, const Eigen::VectorXd& ref, const std::vector<bool>& mask,
@@ -56,11 +68,12 @@ ErrorNorms error_norms(const Eigen::VectorXd& u, const Eigen::VectorXd& ref, con
     ++e.count;
   }
   if (top == std::numeric_limits<double>::infinity()) e.max_rel = std::numeric_limits<double>::quiet_NaN();
-  e.max_rel = scale > 0 ? e.max_rel / scale : e.max_rel;
+  e.max_rel /= scale;
   e.l2_rel = relative_l2(num, den, top, [&](const auto& add) {
     for (Eigen::Index k = 0; k < u.size(); ++k)
       if (mask[k]) add(u[k] - ref[k], ref[k]);
   });
+  mark_unusable_scale(e, scale);
   return e;
 }
 
@@ -89,13 +102,14 @@ ErrorNorms vector_error_norms(const Eigen::VectorXd& ux, const Eigen::VectorXd& 
   } else {
     e.max_rel = std::sqrt(e.max_rel);
   }
-  e.max_rel = scale > 0 ? e.max_rel / scale : e.max_rel;
+  e.max_rel /= scale;
   e.l2_rel = relative_l2(num, den, top, [&](const auto& add) {
     for (Eigen::Index k = 0; k < ux.size(); ++k) {
       add(ux[k] - rx[k], rx[k]);
       add(uy[k] - ry[k], ry[k]);
     }
   });
+  mark_unusable_scale(e, scale);
   return e;
 }
 
@@ -128,8 +142,16 @@ json node_error_summary(const Eigen::VectorXd& a, const Eigen::VectorXd& ref, co
   return {{"max_rel", mx / scale}, {"l2_rel", l2}, {"nodes", n}};
 }
 
+Eigen::VectorXd vector_magnitudes(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
+  Eigen::VectorXd m(x.size());
+  for (Eigen::Index k = 0; k < x.size(); ++k) m[k] = std::hypot(x[k], y[k]);
+  return m;
+}
+
 double peak_relative_difference(const Eigen::VectorXd& u, const Eigen::VectorXd& ref) {
-  return (u.maxCoeff() - ref.maxCoeff()) / ref.maxCoeff();
+  const double peak = ref.maxCoeff();
+  if (!usable_scale(peak)) return std::numeric_limits<double>::quiet_NaN();  // no peak to be relative to
+  return (u.maxCoeff() - peak) / peak;
 }
 
 }  // namespace closurelab

@@ -1,6 +1,10 @@
 // The 2D force-density model's solver section (schema, reader), its meshes and the checks a spec is validated by
 // before anything runs (core/reduced/force_density_2d.hpp); the solver itself is force_density_2d.cpp.
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
 
 #include "core/base/errors.hpp"
 #include "core/reduced/force_density_2d.hpp"
@@ -56,6 +60,43 @@ ForceDensity2DOptions force_density_2d_options_from(const json& s) {
   return o;
 }
 
+namespace {
+
+// The scene's key that sets eta' ("eta_over_l", "eta_over_ly", ...), for messages.
+std::string eta_key(const Scene& scene) {
+  if (scene.params.is_object())
+    for (const auto& [key, value] : scene.params.items())
+      if (key.rfind("eta_over", 0) == 0) return "/scene/" + key;
+  return "/scene (its eta')";
+}
+
+// A coarse mesh finer than the particle lattice averages nothing the particles resolve, and at a tiny eta' its
+// node count outgrows an int (n = 32, eta' = 1e-6 L: 1e12 nodes, which wrapped to 1410065408 and crashed). Its
+// spacing along each resolved side is computed in double from the counts the mesh would get, before any int.
+void check_coarse_not_finer_than_lattice(const Scene& scene, double target) {
+  const auto spacing = [&](double length) { return length / std::max(1.0, std::round(length / target)); };
+  double finest = std::numeric_limits<double>::infinity();
+  double nodes = 1.0;
+  if (!scene.x_invariant) {
+    finest = std::min(finest, spacing(scene.box.lx));
+    nodes *= std::round(scene.box.lx / target);
+  }
+  const double along_y = scene.box.periodic_y ? scene.box.ly : scene.wall_hi - scene.wall_lo;
+  finest = std::min(finest, spacing(along_y));
+  nodes *= std::round(along_y / target) + (scene.box.periodic_y ? 0.0 : 1.0);
+  if (!(target > 0) || !(finest >= scene.dx * (1.0 - 1e-9))) {
+    std::ostringstream os;
+    os.precision(4);
+    os << "the coarse mesh (spacing " << target << " = spacing_over_eta x eta', about " << nodes
+       << " nodes) is finer than the particle lattice (spacing " << scene.dx << ", " << scene.nx << " x " << scene.ny
+       << " particles): the averages cannot resolve what the particles do not; raise " << eta_key(scene)
+       << " or spacing_over_eta to a coarse spacing of at least " << scene.dx;
+    throw ConfigError("/solver/spacing_over_eta", os.str());
+  }
+}
+
+}  // namespace
+
 TensorMesh2D force_density_coarse_mesh(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta) {
   if (!scene.box.periodic_x)
     throw ConfigError("/scene", "the 2D force-density model needs a box periodic in x; scene '" + scene.name + "' is not");
@@ -63,6 +104,7 @@ TensorMesh2D force_density_coarse_mesh(const Scene& scene, const AveragingKernel
     throw ConfigError("/scene", "the 2D force-density model needs a box periodic in y or bounded by walls in y; scene '" +
                                     scene.name + "' is neither");
   const double target = spacing_over_eta * kernel.eta();
+  check_coarse_not_finer_than_lattice(scene, target);
   // x: one column for an x-invariant scene (its fields have no x-structure to resolve), else cell-centred.
   UniformMesh1D x{0.0, scene.box.lx, 1, true, scene.box.lx};  // as the 1D model's column (core/reduced/reduced_grid.hpp)
   if (!scene.x_invariant) {

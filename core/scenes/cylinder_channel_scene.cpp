@@ -12,6 +12,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/memory_limit.hpp"
+#include "core/scenes/wall_rows.hpp"
 #include "core/base/registry.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_kernel.hpp"
@@ -54,6 +55,7 @@ std::unique_ptr<Scene> make_cylinder_channel(const json& p) {
   s->has_walls = true;
   s->wall_lo = 3.0 * s->eta;
   s->wall_hi = l - 3.0 * s->eta;
+  check_rows_off_wall_surfaces(*s, l, "/eta_over_l", "n");
   s->rho0 = p.at("rho").get<double>();
   s->phase_viscosity = {p.at("mu").get<double>()};
   read_sph_discretization(*s, p, "");

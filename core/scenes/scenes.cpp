@@ -9,6 +9,7 @@
 #include "core/base/memory_limit.hpp"
 #include "core/scenes/layered_scene.hpp"
 #include "core/scenes/taylor_green_scene.hpp"
+#include "core/scenes/wall_rows.hpp"
 #include "core/base/registry.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_kernel.hpp"
@@ -167,6 +168,7 @@ Scene make_channel(const std::string& name, const json& p, const std::string& pa
   s.has_walls = true;
   s.wall_lo = 3.0 * s.eta;
   s.wall_hi = ly - 3.0 * s.eta;
+  check_rows_off_wall_surfaces(s, ly, path + "/eta_over_ly", "n_y");
   int fluid_rows = 0;
   for (int j = 0; j < s.ny; ++j) fluid_rows += !s.is_wall((j + 0.5) * s.dx);
   if (s.wall_hi - s.wall_lo < 4.0 * s.dx || fluid_rows < 4)

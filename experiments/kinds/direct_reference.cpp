@@ -6,12 +6,19 @@
 #include <sstream>
 
 #include "core/averaging/averaging.hpp"
+#include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 #include "core/sph/engine_version.hpp"
 #include "experiments/kinds/reference_profiles.hpp"
 
 namespace closurelab {
 
 namespace {
+// The node count in 64-bit arithmetic (TensorMesh2D::size() is an int).
+long long node_count(const TensorMesh2D& m) { return static_cast<long long>(m.nx()) * m.ny(); }
+
+constexpr double kMaxAxisNodes = 2147483647.0;  // INT_MAX: TensorMesh2D counts its nodes in an int
+
 std::string short_number(double v) {
   std::ostringstream os;
   os.precision(3);
@@ -29,9 +36,9 @@ DirectReference run_direct_reference(const Scene& scene, const AveragingKernel& 
   constexpr double kSlowObservation = 2.0;  // seconds
   constexpr int kLargeObservation = 100000;  // nodes
   const std::function<void(const std::string&)> progress = options.progress;
-  if (progress && observed.size() > kLargeObservation)
+  if (progress && node_count(observed) > kLargeObservation)
     progress("the steady test averages " + std::to_string(ref.particles.size()) + " particles onto " +
-             std::to_string(observed.size()) + " nodes (observe spacing " + short_number(observed.y.spacing) +
+             std::to_string(node_count(observed)) + " nodes (observe spacing " + short_number(observed.y.spacing) +
              ") every " + std::to_string(options.steady_window) + " steps");
   using clock = std::chrono::steady_clock;
   auto last_report = clock::now() - std::chrono::hours(1);
@@ -45,7 +52,7 @@ DirectReference run_direct_reference(const Scene& scene, const AveragingKernel& 
     if (progress && took >= kSlowObservation &&
         std::chrono::duration<double>(t1 - last_report).count() >= options.progress_seconds) {
       last_report = t1;
-      progress("steady test: average " + std::to_string(averages) + " onto " + std::to_string(observed.size()) +
+      progress("steady test: average " + std::to_string(averages) + " onto " + std::to_string(node_count(observed)) +
                " nodes took " + short_number(took) + " s (observe_spacing_over_eta sets this mesh; coarser is faster)");
     }
     return v;
@@ -54,7 +61,22 @@ DirectReference run_direct_reference(const Scene& scene, const AveragingKernel& 
   return ref;
 }
 
+void check_observe_mesh(const Scene& scene, double spacing, const std::string& path) {
+  // In double: at a tiny eta' the counts outgrow an int (n = 32, eta' = 1e-6 L: 1e10 nodes wrapped to 1410065408).
+  const double along_x = scene.x_invariant ? 1.0 : std::max(1.0, std::round(scene.box.lx / spacing));
+  const double along_y = std::max(1.0, std::round(scene.box.ly / spacing));
+  const double nodes = along_x * along_y;
+  if (!(along_x <= kMaxAxisNodes && along_y <= kMaxAxisNodes && nodes <= kMaxAxisNodes))
+    throw ConfigError(path, "the steady test's observation mesh (spacing " + short_number(spacing) + ", " +
+                                short_number(along_x) + " x " + short_number(along_y) + " nodes) has more nodes than "
+                                "an int counts; raise observe_spacing_over_eta or the scene's eta'");
+  // Each average holds the density, momenta and velocities (5 doubles a node); the steady test keeps the last two.
+  check_allocation(nodes, 2 * 5 * sizeof(double), "the steady test's observation mesh of " + short_number(nodes) +
+                                                      " nodes (spacing " + short_number(spacing) + ")", path);
+}
+
 TensorMesh2D observe_mesh(const Scene& scene, double spacing) {
+  check_observe_mesh(scene, spacing, "/reference/observe_spacing_over_eta");
   if (scene.x_invariant) return column_mesh(scene.box, spacing);
   const auto axis = [spacing](double length, bool periodic) {
     return UniformMesh1D::cell_centred(0.0, length, std::max(1, static_cast<int>(std::lround(length / spacing))), periodic);

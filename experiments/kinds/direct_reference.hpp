@@ -26,7 +26,10 @@ DirectReference run_direct_reference(const Scene& scene, const AveragingKernel& 
 
 // The mesh whose averaged v_x decides a direct run's steady state: a column of rows of the given spacing for an
 // x-invariant scene (core/averaging/averaging.hpp, column_mesh), else a periodic tensor mesh of that spacing.
+// ConfigError at `path` (check_observe_mesh) when its node count, computed in double, exceeds an int or its
+// averages the memory limit (core/base/memory_limit.hpp).
 TensorMesh2D observe_mesh(const Scene& scene, double spacing);
+void check_observe_mesh(const Scene& scene, double spacing, const std::string& path);
 
 // What determines a direct reference: the resolved scene, kernel and SPH solver sections of a cell, the row
 // spacing of the column mesh whose averaged velocity decides steady state, and the snapshot times.

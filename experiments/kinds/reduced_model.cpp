@@ -104,6 +104,13 @@ class ReducedModel : public ExperimentKind {
     } catch (const ConfigError& e) {
       throw ConfigError(path + e.path(), e.message());
     }
+    {  // the operator's shape (make_averaging_operator_1d): data x data, data x fine rows, or fine x fine
+      const ReducedGrid grid = reduced_grid(*scene, *kernel, options(out));
+      const Discretization disc = options(out).discretization;
+      const long rows = disc == Discretization::fine_fine ? grid.fine.count : grid.data.count;
+      const long cols = disc == Discretization::coarse_coarse ? grid.data.count : grid.fine.count;
+      check_operator_shape(out["closure"], rows, cols, path);
+    }
     return out;
   }
 

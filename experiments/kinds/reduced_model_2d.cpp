@@ -36,7 +36,8 @@ Field mode_field(const TensorMesh2D& mesh, double k, double amplitude) {
   return f;
 }
 
-Eigen::VectorXd speed(const Field& f) { return (f.x.array().square() + f.y.array().square()).sqrt(); }
+// By hypot: a speed of 1e160 squared overflows (it made the scale infinite and every max_rel 0).
+Eigen::VectorXd speed(const Field& f) { return vector_magnitudes(f.x, f.y); }
 
 // The least-squares amplitude of a node field on the mode: Σ v · m / Σ |m|².
 double fitted_amplitude(const Field& f, const Field& unit) {
@@ -99,6 +100,13 @@ class ReducedModel2D : public ExperimentKind {
       check_meso_run_2d(*scene, *kernel, out["solver"], options(out), "/solver");
     } catch (const ConfigError& e) {
       throw ConfigError(path + e.path(), e.message());
+    }
+    {  // the operator's shape (make_averaging_operator_2d): the coarse mesh's data, the coarse or lattice unknowns
+      const TensorMesh2D coarse = coarse_mesh_2d(*scene, *kernel, options(out).spacing_over_eta);
+      const Discretization disc = options(out).discretization;
+      const long lattice = static_cast<long>(scene->nx) * scene->ny, data = coarse.nx() * static_cast<long>(coarse.ny());
+      check_operator_shape(out["closure"], disc == Discretization::fine_fine ? lattice : data,
+                           disc == Discretization::coarse_coarse ? data : lattice, path);
     }
     return out;
   }

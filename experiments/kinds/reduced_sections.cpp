@@ -20,6 +20,23 @@ ParamSchema closure_schema() {
           number_param("noise_level", 0.0, "delta handed to the deconvolver's parameter rule", 0.0, {})};
 }
 
+void check_operator_shape(const json& closure, long rows, long cols, const std::string& path) {
+  if (rows == cols) return;
+  const json& d = closure.at("deconvolver");
+  const std::string name = d.value("name", "");
+  std::string needs;
+  if (name == "landweber" && d.value("lift", "none") == "none")
+    needs = "landweber with lift = none (the series (4.3)/(4.9)) needs a square operator; use coarse_coarse or "
+            "fine_fine, lift = interpolation, landweber_relaxed or cgls";
+  else if (name == "tikhonov" && d.value("form", "") == "paper")
+    needs = "tikhonov's paper form (A + alpha C) x = b needs a square operator; use coarse_coarse or fine_fine, or "
+            "form least_squares";
+  if (needs.empty()) return;
+  throw ConfigError(path + "/closure/discretization",
+                    "the " + closure.at("discretization").get<std::string>() + " operator is " + std::to_string(rows) +
+                        " x " + std::to_string(cols) + " (data x unknowns), not square: " + needs);
+}
+
 ParamSchema reference_schema() {
   return {bool_param("direct_sph", true, "run the direct SPH of the same scene as a reference (and for the speed-up)"),
           object_param("solver", json::object(), "direct SPH solver parameters (as in direct_sph_validation)"),

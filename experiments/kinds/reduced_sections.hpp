@@ -39,6 +39,11 @@ std::vector<double> transient_times(const json& transient, const Scene& scene);
 // 0, as those rows were timed; the reference's direct solver its formulation (upgraded_sph_solver_params).
 json upgraded_reduced_params(json params);
 
+// A deconvolver that needs a square operator (the Landweber series without a lift, Tikhonov's paper form) with a
+// discretization whose operator is `rows` x `cols`, not square (coarse_fine: coarse data, fine unknowns): a
+// ConfigError at `path`/closure/discretization at validation (it failed only at run time, "got 11x20").
+void check_operator_shape(const json& closure, long rows, long cols, const std::string& path);
+
 // "timing": how the reduced run is repeated (core/base/repeated_timing.hpp).
 ParamSchema reduced_timing_schema();
 

@@ -1,14 +1,17 @@
 #include "experiments/kinds/reference_profiles.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <sstream>
 
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
 #include "core/io/pysph_output.hpp"
+#include "experiments/kinds/permeability_validation.hpp"
 #include "experiments/kinds/reduced_sections.hpp"
 #include "experiments/kinds/reference_store.hpp"
 
@@ -82,6 +85,90 @@ std::string hex16(std::uint64_t v) {
   return buf;
 }
 
+std::string number(double v) {
+  std::ostringstream os;
+  os.precision(4);
+  os << v;
+  return os.str();
+}
+
+// A file that scores must be a state of this scene (issue 44: a file of another radius, of the cylinder lattice for
+// the cylinder channel, PySPH's fluid and solid arrays swapped, a state at rest or with a runaway particle all scored
+// `ok` before): its held-fixed particles are the scene's solids (Scene::make_particles' flags), its fluid moves, no
+// particle outruns the scene's sound speed, and its flow has the expected sign.
+void check_state_against_scene(const Scene& scene, const ParticleSystem& p, bool has_fixed, const std::string& file,
+                               const std::string& path) {
+  const auto refuse = [&](const std::string& why) { throw ConfigError(path, "'" + file + "': " + why); };
+  const ParticleSystem lattice = scene.make_particles();  // row j, column i at j * nx + i
+  const auto site_of = [&](double x, double y) {
+    const long i = std::clamp<long>(std::lround(x / scene.dx - 0.5), 0, scene.nx - 1);
+    const long j = std::clamp<long>(std::lround(y / scene.dx - 0.5), 0, scene.ny - 1);
+    return static_cast<std::size_t>(j * scene.nx + i);
+  };
+  const long scene_fixed = std::count(lattice.fixed.begin(), lattice.fixed.end(), 1);
+  const long scene_fluid = static_cast<long>(lattice.size()) - scene_fixed;
+  long file_fixed = 0, misplaced = 0, moving_solid = 0, resting_fluid = 0;
+  std::size_t first_misplaced = 0, first_moving = 0;
+  double fastest = 0.0;
+  std::size_t fastest_at = 0;
+  bool fluid_moves = false;
+  for (std::size_t a = 0; a < p.size(); ++a) {
+    const std::size_t site = site_of(p.x[a], p.y[a]);
+    const double speed = std::hypot(p.vx[a], p.vy[a]);
+    if (speed > fastest) fastest = speed, fastest_at = a;
+    if (p.fixed[a]) {
+      ++file_fixed;
+      // A held particle never moves: it lies on a site the scene holds (a quarter spacing allows the file's rounding).
+      const bool on_site = std::hypot(p.x[a] - lattice.x[site], p.y[a] - lattice.y[site]) <= 0.25 * scene.dx;
+      if (has_fixed && (!lattice.fixed[site] || !on_site) && misplaced++ == 0) first_misplaced = a;
+      if (!has_fixed && speed > 0 && moving_solid++ == 0) first_moving = a;
+    } else {
+      fluid_moves = fluid_moves || speed > 0;
+      if (speed == 0) ++resting_fluid;
+    }
+  }
+  if (has_fixed && (file_fixed != scene_fixed || misplaced > 0)) {
+    std::string why = "its held-fixed (solid) particles are not the scene's: the file holds " +
+                      std::to_string(file_fixed) + ", the scene '" + scene.name + "' " + std::to_string(scene_fixed);
+    if (misplaced > 0)
+      why += "; " + std::to_string(misplaced) + " of the file's lie where the scene has fluid (particle " +
+             std::to_string(first_misplaced) + " at (" + number(p.x[first_misplaced]) + ", " +
+             number(p.y[first_misplaced]) + "))";
+    refuse(why + ": a snapshot of another geometry (a cylinder of another radius, walls the scene lacks) or with its "
+                 "fluid and solid swapped");
+  }
+  // Without flags the scene decides which particles are held (read_reference_file); the file's own velocities must
+  // agree: held particles at rest, fluid particles moving. 1 % of each set may disagree (a fluid particle that
+  // drifted onto a site the scene holds; Morris's ghost-velocity walls store a velocity on the wall particles).
+  if (!has_fixed && scene.wall_model == WallModel::zero_velocity && moving_solid > 0.01 * scene_fixed)
+    refuse(std::to_string(moving_solid) + " of the " + std::to_string(scene_fixed) + " particles the scene '" +
+           scene.name + "' holds at rest move in the file (particle " + std::to_string(first_moving) + " at (" +
+           number(p.x[first_moving]) + ", " + number(p.y[first_moving]) + ")): a snapshot of another geometry");
+  if (!fluid_moves)
+    refuse("every fluid particle is at rest (a state at t = 0?): a reference at rest has no velocity to be relative to");
+  if (!has_fixed && resting_fluid > 0.01 * scene_fluid)
+    refuse(std::to_string(resting_fluid) + " of the scene's " + std::to_string(scene_fluid) + " fluid particles are "
+           "exactly at rest in the file: solid where the scene '" + scene.name + "' has fluid (another geometry)");
+  if (scene.sound_speed > 0 && fastest > scene.sound_speed)
+    refuse("particle " + std::to_string(fastest_at) + " moves at " + number(fastest) + ", faster than the scene's sound "
+           "speed " + number(scene.sound_speed) + ": not a state of this weakly compressible scene (Mach << 1)");
+  // The flow's sign: a positive Darcy permeability; along a channel, the mean v_x of the analytic solution's sign.
+  if (scene.permeability) {
+    const double k = darcy_permeability(scene, p);
+    if (!(k > 0))
+      refuse("its Darcy permeability mu <u_x> / (rho g) is " + number(k) + ", not positive: a flow against the body "
+             "force (or none)");
+  } else if (scene.analytic_vx && scene.has_walls) {
+    double expected = 0.0, got = 0.0;
+    long n = 0;
+    for (std::size_t a = 0; a < p.size(); ++a)
+      if (!p.fixed[a]) expected += scene.analytic_vx(p.y[a]), got += p.vx[a], ++n;
+    if (n > 0 && std::abs(expected) > 0.1 * scene.analytic_peak * n && !(got * expected > 0))
+      refuse("its mean fluid v_x is " + number(got / n) + ", the scene's analytic mean " + number(expected / n) +
+             ": a flow of the other sign");
+  }
+}
+
 }  // namespace
 
 ReferenceFile read_reference_file(const Scene& scene, const std::string& file, int step, const std::string& path) {
@@ -127,6 +214,7 @@ ReferenceFile read_reference_file(const Scene& scene, const std::string& file, i
   };
   spans("y", y_lo, y_hi, scene.box.ly);
   spans("x", x_lo, x_hi, scene.box.lx);
+  check_state_against_scene(scene, p, snap.has_fixed, file, path);
   ReferenceFile out;
   out.record = {{"path", file},
                 {"bytes", static_cast<std::uintmax_t>(std::filesystem::file_size(file, ec))},

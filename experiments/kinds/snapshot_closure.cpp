@@ -28,6 +28,9 @@
 
 namespace closurelab {
 
+// experiments/kinds/reduced_sections.hpp (not included: its closure_schema() would clash with this kind's own).
+void check_operator_shape(const json& closure, long rows, long cols, const std::string& path);
+
 namespace {
 
 ParamSchema snapshot_schema() {
@@ -158,7 +161,10 @@ class SnapshotClosure : public ExperimentKind {
       throw ConfigError(path + "/snapshot/file", "'" + file + "' is not a readable file");
     out["closure"] = resolve_section(cell, "closure", closure_schema(), path);
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
-    meshes(*scene, *kernel, out["closure"]["spacing_over_eta"].get<double>(), path + "/closure/spacing_over_eta");
+    const ReducedGrid m =
+        meshes(*scene, *kernel, out["closure"]["spacing_over_eta"].get<double>(), path + "/closure/spacing_over_eta");
+    const bool coarse = out["closure"]["discretization"] == "coarse_coarse";  // else coarse_fine (the schema's two)
+    check_operator_shape(out["closure"], m.data.count, coarse ? m.data.count : m.fine.count, path);
     return out;
   }
 

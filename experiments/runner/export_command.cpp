@@ -1,6 +1,7 @@
 #include "experiments/runner/export_command.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -86,6 +87,12 @@ int run_export_command(int argc, char** argv) {
   }
   const ParsedArgs args = parse_command_line(export_command_spec(), argc, argv);
   const std::string table_file = args.positional(0), out_file = args.value("--out");
+  std::error_code ec;
+  if (!out_file.empty() && std::filesystem::exists(out_file, ec) && std::filesystem::equivalent(table_file, out_file, ec)) {
+    std::cerr << "error: --out '" << out_file << "' is the table '" << table_file
+              << "' itself: the CSV would overwrite its input; name another file\n";
+    return 2;
+  }
   const std::string text = table_to_csv(read_json_file(table_file));
   if (out_file.empty()) {
     std::cout << text;

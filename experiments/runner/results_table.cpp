@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/base/json_reader.hpp"
 #include "experiments/kinds/reference_store.hpp"
 #include "experiments/runner/provenance.hpp"
 
@@ -30,13 +31,8 @@ std::string sealed_text(const json& row) {
   return dump_file(stored);
 }
 
-std::string read_text_file(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  if (!in) throw std::runtime_error("cannot read '" + file.string() + "'");
-  return os.str();
-}
+// Through the guarded reader: a FIFO named *.json in cells/ blocked seal, a link to /dev/zero grew without end.
+std::string read_text_file(const fs::path& file) { return read_text_file_guarded(file.string()); }
 
 SealOutcome refused(const std::string& problem) { return {SealOutcome::Result::refused, false, problem}; }
 

@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
+#include "core/base/errors.hpp"
 #include "core/base/params.hpp"
 #include "core/base/registry.hpp"
 #include "core/io/particle_snapshot.hpp"
@@ -125,4 +127,72 @@ TEST(ReducedReferenceFile2D, BadFilesAreConfigErrorsBeforeAnythingRuns) {
   ASSERT_EQ(from_csv.particles.size(), from_pysph.particles.size());
   EXPECT_EQ(from_csv.particles.fixed, from_pysph.particles.fixed);
   EXPECT_GT(std::count(from_csv.particles.fixed.begin(), from_csv.particles.fixed.end(), 1), 0);
+}
+
+// Issue 44: a file that is not a state of the scene is refused before it scores (each of these scored `ok`: k = 0,
+// max_rel 0.0, a negative permeability). Held-fixed flags are compared with the scene's solids (the count and every
+// held particle on a site the scene holds); without flags, the file's velocities must agree with the scene's solids
+// (held at rest, fluid moving, 1 % of each set may differ); the fluid moves, no particle outruns the sound speed, and
+// the Darcy permeability is positive.
+TEST(ReducedReferenceFile2D, FilesOfAnotherGeometryOrAtRestAreRefused) {
+  const auto work = fresh_work_folder("reduced_reference_geometry_2d");
+  const ParticleSnapshot s = read_particle_snapshot(pysph_file);  // a = 0.2 L, n = 32, t = 0.05
+  const auto scene_of = [](json scene) { return builtin_registry().scenes.create(scene, "/scene"); };
+  json a03 = cylinder_cell(32).at("scene");
+  a03["radius_over_length"] = 0.3;
+  const auto lattice = scene_of(cylinder_cell(32).at("scene")), lattice_a03 = scene_of(a03);
+  const auto channel = scene_of({{"name", "cylinder-channel"}, {"n", 32}, {"radius_over_length", 0.1}});
+  const auto refused = [&](const Scene& scene, const std::string& file, const std::string& says) {
+    SCOPED_TRACE(file + " for " + scene.name);
+    try {
+      read_reference_file(scene, file, -1, "/reference/file");
+      ADD_FAILURE() << "accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(e.path(), "/reference/file");
+      EXPECT_NE(e.message().find(says), std::string::npos) << e.message();
+    }
+  };
+  const auto with = [&](const std::function<void(ParticleSystem&)>& change) {
+    ParticleSystem p = s.particles;
+    change(p);
+    return p;
+  };
+  EXPECT_NO_THROW(read_reference_file(*lattice, pysph_file, -1, "/reference/file"));  // its own scene
+  // The 0.2 L file for the 0.3 L scene, with PySPH's solid array and as CSV without flags (the velocities decide).
+  refused(*lattice_a03, pysph_file, "not the scene's");
+  refused(*lattice_a03, write_particles_csv(work / "a02.csv", s.particles, false), "move in the file");
+  // A 0.3 L state for the 0.2 L scene: the 0.3 L lattice, its fluid moving along x at a tenth of the sound speed.
+  ParticleSystem a03_state = lattice_a03->make_particles();
+  for (std::size_t k = 0; k < a03_state.size(); ++k)
+    if (!a03_state.fixed[k]) a03_state.vx[k] = 0.1 * lattice_a03->sound_speed;
+  refused(*lattice, write_particles_csv(work / "a03_flags.csv", a03_state, true), "not the scene's");
+  refused(*lattice, write_particles_csv(work / "a03.csv", a03_state, false), "exactly at rest");
+  // The cylinder lattice's file for the cylinder channel (the same count: walls inside the box).
+  refused(*channel, pysph_file, "not the scene's");
+  refused(*channel, write_particles_csv(work / "lattice.csv", s.particles, false), "move in the file");
+  // PySPH's fluid and solid arrays swapped.
+  ParticleSnapshot swapped = s;
+  for (auto& f : swapped.particles.fixed) f = f ? 0 : 1;
+  write_pysph_layout((work / "swapped.hdf5").string(), swapped);
+  refused(*lattice, (work / "swapped.hdf5").string(), "swapped");
+  // At rest (a state at t = 0), one particle at 1e160, the flow reversed.
+  refused(*lattice, write_particles_csv(work / "rest.csv", with([](ParticleSystem& p) {
+                                          std::fill(p.vx.begin(), p.vx.end(), 0.0);
+                                          std::fill(p.vy.begin(), p.vy.end(), 0.0);
+                                        }), true),
+          "at rest");
+  refused(*lattice, write_particles_csv(work / "runaway.csv", with([](ParticleSystem& p) {
+                                          const auto a = std::find(p.fixed.begin(), p.fixed.end(), 0) - p.fixed.begin();
+                                          p.vx[static_cast<std::size_t>(a)] = 1e160;
+                                        }), true),
+          "faster than the scene's sound speed");
+  refused(*lattice, write_particles_csv(work / "reversed.csv", with([](ParticleSystem& p) {
+                                          for (auto& v : p.vx) v = -v;
+                                        }), true),
+          "not positive");
+  // Through the command line: refused at validation, the cell's JSON path named, nothing written.
+  json base = cylinder_cell(32);
+  base["scene"]["radius_over_length"] = 0.3;
+  base["reference"] = {{"file", pysph_file}};
+  expect_refused(work, "a02_for_a03", base, "/reference/file", "not the scene's");
 }

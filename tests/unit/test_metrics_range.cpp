@@ -68,3 +68,44 @@ TEST(MetricsRange, NonFiniteDataGiveNonFiniteNorms) {
   EXPECT_FALSE(std::isfinite(robust_norm(u)));
   EXPECT_DOUBLE_EQ(robust_norm(Eigen::VectorXd::Constant(4, 1e200)), 2e200);
 }
+
+// Issue 44: a degenerate scale is no scale. A reference at rest (scale 0) used to turn max_rel into the absolute
+// error, and one particle at 1e160 made the peak speed overflow (plain squaring), the scale infinite and every
+// max_rel 0.0, `ok`. Now both norms are null for a zero, negative, infinite or NaN scale, never an absolute or zero
+// error read as relative; the speeds come from hypot, so 1e160 stays finite.
+TEST(MetricsRange, AnUnusableScaleGivesNullNorms) {
+  const int n = 6;
+  const Eigen::VectorXd u = sample(n, 0.4), ref = sample(n, 0.0);
+  const std::vector<bool> mask(n, true);
+  for (double scale : {0.0, -1.0, double(INFINITY), double(NAN)}) {
+    SCOPED_TRACE(scale);
+    EXPECT_FALSE(usable_scale(scale));
+    const ErrorNorms e = error_norms(u, ref, mask, scale);
+    EXPECT_TRUE(std::isnan(e.max_rel) && std::isnan(e.l2_rel));
+    EXPECT_TRUE(e.to_json()["max_rel"].is_null() && e.to_json()["l2_rel"].is_null());
+    EXPECT_EQ(e.to_json()["count"], n);
+    const ErrorNorms v = vector_error_norms(u, u, ref, ref, scale);
+    EXPECT_TRUE(v.to_json()["max_rel"].is_null() && v.to_json()["l2_rel"].is_null());
+  }
+  EXPECT_TRUE(usable_scale(1e-300) && usable_scale(1e300));
+  // A reference that vanishes on the subset has no relative l2 error unless the difference vanishes too.
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  EXPECT_TRUE(error_norms(u, zero, mask, 1.0).to_json()["l2_rel"].is_null());
+  EXPECT_EQ(error_norms(zero, zero, mask, 1.0).l2_rel, 0.0);
+  // The peak metric has no peak to be relative to when the reference's is not positive.
+  EXPECT_TRUE(std::isnan(peak_relative_difference(u, zero)));
+}
+
+TEST(MetricsRange, SpeedsOf1e160StayFinite) {
+  Eigen::VectorXd x(3), y(3);
+  x << 1e160, 3.0, -1e-200;
+  y << 1e160, 4.0, 0.0;
+  const Eigen::VectorXd s = vector_magnitudes(x, y);
+  EXPECT_DOUBLE_EQ(s[0], std::sqrt(2.0) * 1e160);  // plain squaring gives inf
+  EXPECT_DOUBLE_EQ(s[1], 5.0);
+  EXPECT_DOUBLE_EQ(s[2], 1e-200);  // plain squaring gives 0
+  // The scale from those speeds is usable, and a reduced field of order one against it has max_rel about 1, not 0.
+  const Eigen::VectorXd u = Eigen::VectorXd::Ones(3);
+  const ErrorNorms e = vector_error_norms(u, u, x, y, s.maxCoeff());
+  EXPECT_NEAR(e.max_rel, 1.0, 1e-12);
+}

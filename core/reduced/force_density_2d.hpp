@@ -1,5 +1,5 @@
 #pragma once
-// The linearised force-density reduced model in two dimensions, with solids (issue 21 §3; beyond the paper): the
+// The linearised force-density reduced model in two dimensions, with solids (beyond the paper): the
 // averaged balance of a scene periodic in x, and in y or bounded by walls in y, whose particles stay near their
 // lattice sites (Stokes flow, Re ≪ 1), solids given by position (the scene's frozen particles: walls, or a lattice of
 // cylinders; the walls are solids like any other), on a tensor coarse mesh of spacing Δ ≈ η' (one column for an
@@ -31,7 +31,7 @@
 // Steady state: the closure must be linear in its data (a fixed parameter); one linear solve of the probed affine
 // rate, bordered by the total density deviation, which the rate leaves free. (Explicit steps at (5.21)–(5.22)
 // diverge with a weakly regularised closure, and at α = 1e-2 had not settled to 1e-9 by t = 20 on the test lattice:
-// transients are left to the cost issue's library integrator.)
+// transients are left to a library integrator, not built yet.)
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>

@@ -1,6 +1,6 @@
 #pragma once
 // A particle row on a wall surface (core/scenes/wall_rows.cpp): refused, since whether it is wall or fluid would be
-// decided by rounding (issue 44).
+// decided by rounding.
 #include <string>
 
 namespace closurelab {

@@ -1,4 +1,4 @@
-// Experiment kind "reduced_model" for every scene (issue 21 §1): one kind, three reduced models behind it, chosen by
+// Experiment kind "reduced_model" for every scene: one kind, three reduced models behind it, chosen by
 // the cell's top-level "model" or, without one, by the scene:
 //   column            the 1D coarse solver across an x-invariant scene (core/reduced/meso_solver.hpp;
 //                     experiments/kinds/reduced_model.cpp): the paper's schemes, the force-density balance, transients,

@@ -92,7 +92,7 @@ std::string number(double v) {
   return os.str();
 }
 
-// A file that scores must be a state of this scene (issue 44: a file of another radius, of the cylinder lattice for
+// A file that scores must be a state of this scene (a file of another radius, of the cylinder lattice for
 // the cylinder channel, PySPH's fluid and solid arrays swapped, a state at rest or with a runaway particle all scored
 // `ok` before): its held-fixed particles are the scene's solids (Scene::make_particles' flags), its fluid moves, no
 // particle outruns the scene's sound speed, and its flow has the expected sign.

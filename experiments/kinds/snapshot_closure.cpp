@@ -100,7 +100,7 @@ ParticleSystem particles_for(const Scene& scene, ParticleSnapshot snap, const st
   }
   // The pair forces take the scene's particle mass, so the snapshot must hold the scene's number of particles
   // (the box full at its lattice density; particles are conserved): a file cut at a line boundary, which every
-  // line-by-line check passes, holds fewer (issue 25).
+  // line-by-line check passes, holds fewer.
   const std::size_t expected = scene.make_particles().size();
   if (p.size() != expected)
     throw ConfigError("/snapshot/file", "'" + file + "' holds " + std::to_string(p.size()) + " particles, the scene '" +

@@ -1,4 +1,4 @@
-// Issue 44: readers open regular files only. `seal DIR` read a cell file before the guarded JSON reader, so a FIFO
+// Readers open regular files only. `seal DIR` read a cell file before the guarded JSON reader, so a FIFO
 // named *.json in DIR/cells blocked it for ever and a link to /dev/zero grew its memory to GB; now each is refused
 // ("not a regular file"), checked before it is opened, and the other cells are still sealed. `export T.json --csv
 // --out T.json` overwrote the table with its CSV (exit 0); now it is refused and the table left as it was.

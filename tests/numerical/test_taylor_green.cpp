@@ -76,7 +76,7 @@ TEST(TaylorGreenTransportVelocity, EarlyMaxVelocityErrorFallsWithN) {
 // Its first evaluation has uhat = 0 (this engine's ṽ = v, transport_velocity.hpp), so the two differ by more than
 // round-off; measured: at most 0.055 % relative over these times (0.6 % by t = 1, the particles' disorder amplifying
 // the start's difference). Tolerance 0.3 % (5x): the 21 % dip at t = 0.2 must be reproduced. (Not yet shown: which
-// planted change of a TVF term this fails on; the round-off peer of issue 42's next stage is the test for that.)
+// planted change of a TVF term this fails on; the round-off peer comparison to come is the test for that.)
 TEST(TaylorGreenTransportVelocity, MaxVelocityHistoryMatchesPySphsTvf) {
   const double pysph[10] = {0.9522720, 0.9513001, 0.7860187, 1.034474, 0.7458653,
                             0.6666726, 0.6086834, 0.5677546, 0.5439523, 0.5151220};

@@ -129,7 +129,7 @@ TEST(ReducedReferenceFile2D, BadFilesAreConfigErrorsBeforeAnythingRuns) {
   EXPECT_GT(std::count(from_csv.particles.fixed.begin(), from_csv.particles.fixed.end(), 1), 0);
 }
 
-// Issue 44: a file that is not a state of the scene is refused before it scores (each of these scored `ok`: k = 0,
+// A file that is not a state of the scene is refused before it scores (each of these scored `ok`: k = 0,
 // max_rel 0.0, a negative permeability). Held-fixed flags are compared with the scene's solids (the count and every
 // held particle on a site the scene holds); without flags, the file's velocities must agree with the scene's solids
 // (held at rest, fluid moving, 1 % of each set may differ); the fluid moves, no particle outruns the sound speed, and

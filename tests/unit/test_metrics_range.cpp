@@ -69,7 +69,7 @@ TEST(MetricsRange, NonFiniteDataGiveNonFiniteNorms) {
   EXPECT_DOUBLE_EQ(robust_norm(Eigen::VectorXd::Constant(4, 1e200)), 2e200);
 }
 
-// Issue 44: a degenerate scale is no scale. A reference at rest (scale 0) used to turn max_rel into the absolute
+// A degenerate scale is no scale. A reference at rest (scale 0) used to turn max_rel into the absolute
 // error, and one particle at 1e160 made the peak speed overflow (plain squaring), the scale infinite and every
 // max_rel 0.0, `ok`. Now both norms are null for a zero, negative, infinite or NaN scale, never an absolute or zero
 // error read as relative; the speeds come from hypot, so 1e160 stays finite.

@@ -1,4 +1,4 @@
-// Issue 44: a particle row on a wall surface. On poiseuille-uniform at n_y = 32, eta'/L_y = 0.078125 (3 eta'/epsilon'
+// A particle row on a wall surface. On poiseuille-uniform at n_y = 32, eta'/L_y = 0.078125 (3 eta'/epsilon'
 // = 7.5) the row y = 7.5 epsilon' lay exactly on y = 3 eta': the engine held it as fluid (y < wall_lo false), the
 // reduced model's fine mesh counted it as wall (floor(wall_lo / epsilon' - 1/2) + 1), and the near-wall formulation
 // reported 9.87 % `ok` between 0.075 % and 0.029 % at its neighbours. Such a geometry is now refused, naming the key

@@ -136,14 +136,14 @@ constexpr double kTolerance = 1e-11;
 }  // namespace
 
 TEST(SphEngineReference, ChannelZeroVelocityWallsQuintic) {
-  const Deviation d = run_both(json{{"name", "poiseuille-uniform"}, {"n_y", 24}}, 300);
+  const Deviation d = run_both(json{{"name", "poiseuille-uniform"}, {"n_y", 32}}, 300);
   EXPECT_LT(d.position, kTolerance);
   EXPECT_LT(d.velocity, kTolerance);
 }
 
 TEST(SphEngineReference, ChannelGhostVelocityWallsWendland) {
   const Deviation d = run_both(json{{"name", "poiseuille-periodic"},
-                                    {"n_y", 24},
+                                    {"n_y", 32},
                                     {"wall_model", "ghost_velocity"},
                                     {"ghost_beta_max", 1.5},
                                     {"smoothing_kernel", "wendland_c2"},
@@ -187,9 +187,9 @@ TEST(SphEngineVectorKernels, VectorKernelsAndBaselineGiveTheSameBits) {
     if (pair_kernel_isa_available(isa)) vector_isas.push_back(isa);
   if (vector_isas.empty()) GTEST_SKIP() << "no vector pair kernel in this build or CPU";
   const PairKernelIsa chosen = pair_kernel_isa();
-  for (const json& params : {json{{"name", "poiseuille-uniform"}, {"n_y", 24}},
+  for (const json& params : {json{{"name", "poiseuille-uniform"}, {"n_y", 32}},
                              json{{"name", "poiseuille-periodic"},
-                                  {"n_y", 24},
+                                  {"n_y", 32},
                                   {"wall_model", "ghost_velocity"},
                                   {"ghost_beta_max", 1.5},
                                   {"smoothing_kernel", "wendland_c2"},

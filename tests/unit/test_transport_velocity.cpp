@@ -193,7 +193,7 @@ TEST(TransportVelocity, ABackgroundPressureAtOrBelowZeroIsAConfigErrorAtItsPath)
 }
 
 TEST(TransportVelocity, WallsAndSolidsAreRefusedUntilTheirWallConditionExists) {
-  const auto channel = builtin_registry().scenes.create({{"name", "poiseuille-uniform"}, {"n_y", 24}}, "/scene");
+  const auto channel = builtin_registry().scenes.create({{"name", "poiseuille-uniform"}, {"n_y", 32}}, "/scene");
   const json solver = resolve_params({{"formulation", "transport_velocity"}, {"mode", "target_time"}, {"target_time", 0.01}},
                                      sph_solver_schema(), "/solver");
   try {

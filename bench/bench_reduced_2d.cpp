@@ -24,6 +24,7 @@ struct Model {
   std::unique_ptr<AveragingKernel> kernel;
   std::unique_ptr<Deconvolver> deconvolver;
   std::unique_ptr<StressQuadrature> on_x, on_y;
+  std::unique_ptr<Integrator> integrator;
   std::unique_ptr<MesoSolver2D> solver;
 };
 
@@ -36,11 +37,12 @@ std::unique_ptr<Model> build(int n, int m) {
   const json q = {{"name", "coarse"}, {"stride_x", n / m}, {"stride_y", n / m}};
   model->on_x = reg.quadratures.create(q, "/quadrature");
   model->on_y = reg.quadratures.create(q, "/quadrature");
+  model->integrator = reg.integrators.create(json{{"name", "explicit"}}, "/integrator");
   MesoSolver2DOptions opt;
   opt.spacing_over_eta = 16.0 / m;
   opt.discretization = Discretization::coarse_fine;
   model->solver = std::make_unique<MesoSolver2D>(*model->scene, *model->kernel, *model->deconvolver, *model->on_x,
-                                                 *model->on_y, opt);
+                                                 *model->on_y, *model->integrator, opt);
   return model;
 }
 

@@ -4,6 +4,7 @@
 #include "core/closure/deconvolver.hpp"
 #include "core/sph/scene.hpp"
 #include "core/closure/stress_quadrature.hpp"
+#include "core/reduced/integrator.hpp"
 
 namespace closurelab {
 
@@ -13,6 +14,7 @@ void register_builtin_strategies(Registry& r) {
   register_deconvolvers(r);
   register_quadratures(r);
   register_scenes(r);
+  register_integrators(r);
 }
 
 }  // namespace closurelab

@@ -142,6 +142,7 @@ class InstanceFamily {
 class AveragingKernel;
 class Deconvolver;
 class StressQuadrature;
+class Integrator;
 struct Scene;
 class ExperimentKind;
 
@@ -150,6 +151,8 @@ struct Registry {
   Family<Deconvolver> deconvolvers{"deconvolver"};
   Family<StressQuadrature> quadratures{"quadrature"};
   Family<Scene> scenes{"scene"};
+  // How a stepped reduced model advances (core/reduced/integrator.hpp), named by its solver.time_integration.
+  Family<Integrator> integrators{"integrator"};
   // The experiment kinds (experiments/kinds/experiment_kind.hpp): the built-ins by register_builtin_experiments
   // (experiments/kinds/experiment_kinds.cpp), then a user's, added by a registration hook with
   // `registry.experiments.add(...)`. The runner finds every cell's kind here.
@@ -157,7 +160,7 @@ struct Registry {
 
   // The strategy and scene families (parameter schemas; `closurelab list` prints the experiment kinds apart, with
   // their sections).
-  std::vector<const FamilyBase*> families() const { return {&kernels, &deconvolvers, &quadratures, &scenes}; }
+  std::vector<const FamilyBase*> families() const { return {&kernels, &deconvolvers, &quadratures, &scenes, &integrators}; }
 };
 
 // Fills `registry` with every built-in strategy and scene (strategies/register_builtin.cpp). Idempotent: a

@@ -67,7 +67,7 @@ void MesoSolver::set_oracles(MesoOracles oracles) {
   }
   oracles_ = std::move(oracles);
   hold_nodes();
-  jacobian_.resize(0, 0);  // held nodes and the closure changed: probe again
+  integrator_.reset();  // held nodes and the closure changed: what the integrator learned of the rate is stale
 }
 
 Eigen::VectorXd MesoSolver::reported_velocity() {

@@ -77,8 +77,13 @@ void check_meso_solver(const Scene& scene, const AveragingKernel& kernel, const 
 }
 
 MesoSolver::MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconvolver& deconvolver,
-                       StressQuadrature& quadrature, MesoSolverOptions options)
-    : scene_(scene), kernel_(kernel), deconvolver_(deconvolver), quadrature_(quadrature), opt_(std::move(options)) {
+                       StressQuadrature& quadrature, Integrator& integrator, MesoSolverOptions options)
+    : scene_(scene),
+      kernel_(kernel),
+      deconvolver_(deconvolver),
+      quadrature_(quadrature),
+      integrator_(integrator),
+      opt_(std::move(options)) {
   const ReducedGrid grid = reduced_grid(scene, kernel, opt_);
   coarse_ = grid.coarse;
   data_ = grid.data;

@@ -31,13 +31,13 @@
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_engine.hpp"
 #include "core/closure/stress_quadrature.hpp"
+#include "core/reduced/integrator.hpp"
 
 namespace closurelab {
 
 // The solver's choices, named as the JSON names them (core/base/enum_names.hpp).
 enum class MesoScheme { paper, staggered };                          // (5.11)–(5.14), or the conservative flux form
 enum class MesoBalance { stress_divergence, force_density };
-enum class TimeIntegration { explicit_euler, backward_euler };
 enum class WallNodeValue { imposed, reconstructed };
 enum class BoundaryOracle { none, wall_nodes, wall_band };
 template <>
@@ -49,11 +49,6 @@ template <>
 struct EnumNames<MesoBalance> {
   static constexpr std::array<std::pair<MesoBalance, std::string_view>, 2> table{
       {{MesoBalance::stress_divergence, "stress_divergence"}, {MesoBalance::force_density, "force_density"}}};
-};
-template <>
-struct EnumNames<TimeIntegration> {
-  static constexpr std::array<std::pair<TimeIntegration, std::string_view>, 2> table{
-      {{TimeIntegration::explicit_euler, "explicit"}, {TimeIntegration::backward_euler, "backward_euler"}}};
 };
 template <>
 struct EnumNames<WallNodeValue> {
@@ -97,10 +92,9 @@ struct MesoSolverOptions : TimeLoopOptions {
   // rows probed once (positions stay on the lattice). With it, the wall-surface nodes are evolved (and are
   // deconvolution data) in the coarse–fine and fine–fine discretizations.
   MesoBalance balance = MesoBalance::stress_divergence;
-  // "explicit": forward Euler (5.11)–(5.14); "backward_euler": implicit in the whole rate, which is affine in v̄
-  // for a closure with fixed parameters (its Jacobian probed once, checked for affinity): stable for the stiff
-  // fluid–wall coupling of evolved wall-surface nodes, same steady state.
-  TimeIntegration time_integration = TimeIntegration::explicit_euler;
+  // The step itself is the Integrator's the solver is given (core/reduced/integrator.hpp; the solver section's
+  // time_integration names it: "explicit", the paper's forward Euler, or "backward_euler", stable for the stiff
+  // fluid–wall coupling of evolved wall-surface nodes, same steady state).
 };
 
 // Oracle substitution (the error budget): ingredients of the reduced model replaced by their exact
@@ -181,10 +175,10 @@ void check_meso_run(const Scene& scene, const AveragingKernel& kernel, const jso
 
 class MesoSolver {
  public:
-  // The kernel, deconvolver and quadrature must outlive the solver. Throws ConfigError when the scene or
-  // options do not fit (no x-invariance, too few coarse nodes).
+  // The kernel, deconvolver, quadrature and integrator must outlive the solver. Throws ConfigError when the scene
+  // or options do not fit (no x-invariance, too few coarse nodes).
   MesoSolver(const Scene& scene, const AveragingKernel& kernel, Deconvolver& deconvolver, StressQuadrature& quadrature,
-             MesoSolverOptions options);
+             Integrator& integrator, MesoSolverOptions options);
 
   MesoResult run();
   // v̄ on the coarse nodes, and the closure's reconstruction sampled at points (for diagnostics/tests).
@@ -212,7 +206,6 @@ class MesoSolver {
   bool deconvolve(std::string& issue);    // v̄ → reconstruction_
   bool close_stress(std::string& issue);  // deconvolve + quadrature → t_
   bool rate(Eigen::VectorXd& dvdt, std::string& issue);  // ∂_t v̄ at the current v̄
-  bool probe_jacobian(std::string& issue);
   void hold_nodes();                      // held nodes back to their values
   Eigen::VectorXd constraint_force();     // F_c at the coarse nodes for the current reconstruction
 
@@ -220,6 +213,7 @@ class MesoSolver {
   const AveragingKernel& kernel_;
   Deconvolver& deconvolver_;
   StressQuadrature& quadrature_;
+  Integrator& integrator_;
   MesoSolverOptions opt_;
   UniformMesh1D coarse_, data_, fine_, stress_axis_;  // data_: the nodes whose v̄ is deconvolved
   ForwardOperator op_;
@@ -229,8 +223,6 @@ class MesoSolver {
   // reconstruction on the fluid rows (core/reduced/averaged_force_map.hpp); empty when not used.
   AveragedForceMap constraint_map_, force_density_map_;
   bool walls_are_data_ = false;
-  Eigen::MatrixXd jacobian_;  // backward Euler: ∂(rate)/∂v̄ and the rate at jacobian_base_
-  Eigen::VectorXd rate_offset_, jacobian_base_;  // the wall-surface nodes evolve and are deconvolution data
   // Nodes whose value is imposed, not evolved: the wall nodes (5.6) at zero, or oracle values.
   std::vector<bool> held_;
   Eigen::VectorXd held_values_;

@@ -110,11 +110,13 @@ void check_meso_run_2d(const Scene& scene, const AveragingKernel& kernel, const 
 }
 
 MesoSolver2D::MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, Deconvolver& deconvolver,
-                           StressQuadrature& on_x_faces, StressQuadrature& on_y_faces, MesoSolver2DOptions options)
+                           StressQuadrature& on_x_faces, StressQuadrature& on_y_faces, Integrator& integrator,
+                           MesoSolver2DOptions options)
     : scene_(scene),
       deconvolver_(deconvolver),
       on_x_faces_(on_x_faces),
       on_y_faces_(on_y_faces),
+      integrator_(integrator),
       opt_(std::move(options)) {
   coarse_ = coarse_mesh_2d(scene, kernel, opt_.spacing_over_eta);
   fine_ = TensorMesh2D{UniformMesh1D::cell_centred(0.0, scene.box.lx, scene.nx, true),
@@ -209,11 +211,23 @@ bool MesoSolver2D::rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& i
 }
 
 bool MesoSolver2D::step(double dt, std::string& issue) {
-  Eigen::VectorXd ax, ay;
-  if (!rate(ax, ay, issue)) return false;
-  vx_ += dt * ax;
-  vy_ += dt * ay;
-  return true;
+  // The state u = (v̄_x, v̄_y), its rate (∂_t v̄_x, ∂_t v̄_y); no node is held (doubly periodic).
+  const Eigen::Index n = vx_.size();
+  const CoarseRate f{[&](const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& why) {
+    vx_ = u.head(n);
+    vy_ = u.tail(n);
+    Eigen::VectorXd ax, ay;
+    if (!rate(ax, ay, why)) return false;
+    dudt.resize(2 * n);
+    dudt << ax, ay;
+    return true;
+  }};
+  Eigen::VectorXd u(2 * n);
+  u << vx_, vy_;
+  const bool ok = integrator_.step(f, dt, u, issue);
+  vx_ = u.head(n);
+  vy_ = u.tail(n);
+  return ok;
 }
 
 double MesoSolver2D::time_step() const {

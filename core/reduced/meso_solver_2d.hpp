@@ -79,9 +79,11 @@ void check_meso_run_2d(const Scene& scene, const AveragingKernel& kernel, const 
 
 class MesoSolver2D {
  public:
-  // The kernel, deconvolver and both quadratures (two instances of one configuration) must outlive the solver.
+  // The kernel, deconvolver, both quadratures (two instances of one configuration) and the integrator (explicit:
+  // (5.21)–(5.22) bound the step for the forward Euler step) must outlive the solver.
   MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, Deconvolver& deconvolver,
-               StressQuadrature& on_x_faces, StressQuadrature& on_y_faces, MesoSolver2DOptions options);
+               StressQuadrature& on_x_faces, StressQuadrature& on_y_faces, Integrator& integrator,
+               MesoSolver2DOptions options);
 
   MesoResult2D run();
   bool step(double dt, std::string& issue);  // false on a numerical issue (message in `issue`)
@@ -104,6 +106,7 @@ class MesoSolver2D {
   const Scene& scene_;
   Deconvolver& deconvolver_;
   StressQuadrature &on_x_faces_, &on_y_faces_;
+  Integrator& integrator_;
   MesoSolver2DOptions opt_;
   TensorMesh2D coarse_, fine_, solution_;
   ForwardOperator op_;

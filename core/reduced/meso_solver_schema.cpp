@@ -25,10 +25,9 @@ ParamSchema meso_solver_schema() {
                    "force_density (exact divergence of (2.13): the averaged pair forces on the fluid particles, "
                    "wall constraint forces included; the quadrature is then unused)",
                    names_of<MesoBalance>()),
-      string_param("time_integration", name_of(d.time_integration),
-                   "explicit (forward Euler, the paper) or backward_euler (implicit; needs a closure with fixed "
-                   "parameters, whose rate is affine in v)",
-                   names_of<TimeIntegration>())};
+      string_param("time_integration", "explicit",
+                   "the registered integrator (closurelab list integrator): explicit (forward Euler, the paper) or "
+                   "backward_euler (implicit; needs a closure with fixed parameters, whose rate is affine in v)")};
   for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
   return schema;
 }
@@ -46,16 +45,27 @@ std::string closure_nonlinearity(const json& deconvolver) {
                            : "";
 }
 
-void check_implicit_closure(const json& solver, const json& deconvolver, const std::string& path) {
-  if (solver.value("time_integration", "") != name_of(TimeIntegration::backward_euler)) return;
-  // Backward Euler solves with the rate's Jacobian, probed once: right only when the closure is linear in v̄. A
-  // parameter rule is served by the two-pass rule (experiments/kinds/reduced_model.cpp: the parameter chosen once
-  // from the steady state at the configured fixed one, then fixed); a Krylov method's iterate is not linear at any
-  // count.
+std::unique_ptr<Integrator> make_integrator(const Registry& registry, const json& resolved_solver,
+                                            const std::string& path) {
+  const std::string name = resolved_solver.at("time_integration").get<std::string>();
+  if (!registry.integrators.contains(name))
+    throw ConfigError(path + "/solver/time_integration",
+                      "unknown integrator '" + name + "'; known: " + registry.integrators.known_names());
+  return registry.integrators.create(json{{"name", name}}, path + "/solver/time_integration");
+}
+
+void check_implicit_closure(const json& solver, const Integrator& integrator, const json& deconvolver,
+                            const std::string& path) {
+  if (!integrator.needs_affine_rate()) return;
+  // An integrator for an affine rate (backward Euler's Jacobian, probed once) is right only when the closure is
+  // linear in v̄. A parameter rule is served by the two-pass rule (experiments/kinds/reduced_model.cpp: the parameter
+  // chosen once from the steady state at the configured fixed one, then fixed); a Krylov method's iterate is not
+  // linear at any count.
   const std::string name = deconvolver.value("name", "");
+  const std::string integrator_name = solver.at("time_integration").get<std::string>();
   if (name == "cg" || name == "cgls")
     throw ConfigError(path + "/solver/time_integration",
-                      "backward_euler needs a closure linear in the coarse velocity (landweber, landweber_relaxed, "
+                      integrator_name + " needs a closure linear in the coarse velocity (landweber, landweber_relaxed, "
                       "tikhonov or tsvd, a rule chosen by the two-pass rule); " + closure_nonlinearity(deconvolver) +
                           " (/closure/deconvolver); use time_integration explicit");
 }
@@ -74,8 +84,6 @@ MesoSolverOptions meso_options_from(const json& s) {
   o.wall_constraint_forces = s.at("wall_constraint_forces").get<bool>();
   o.wall_node_value = parse_name<WallNodeValue>(s.at("wall_node_value").get<std::string>(), "/solver/wall_node_value");
   o.balance = parse_name<MesoBalance>(s.at("balance").get<std::string>(), "/solver/balance");
-  o.time_integration =
-      parse_name<TimeIntegration>(s.at("time_integration").get<std::string>(), "/solver/time_integration");
   read_time_loop(s, o);
   return o;
 }

@@ -78,7 +78,7 @@ class ReducedModel : public ExperimentKind {
     out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
     out["solver"] = resolve_section(cell, "solver", meso_solver_schema(), path);
     check_time_loop(out["solver"], path + "/solver");
-    check_implicit_closure(out["solver"], out["closure"]["deconvolver"], path);
+    check_implicit_closure(out["solver"], *make_integrator(reg, out["solver"], path), out["closure"]["deconvolver"], path);
     out["reference"] = resolve_section(cell, "reference", reference_with_file_schema(), path);
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
@@ -164,7 +164,8 @@ class ReducedModel : public ExperimentKind {
     // fixed parameter; the rule applied once to pass 1's steady data (the vector the closure deconvolves) picks the
     // parameter; pass 2 runs with it fixed. Both passes and the choice are timed as one reduced run.
     const json& configured = cfg.at("closure").at("deconvolver");
-    const bool two_pass = opt.time_integration == TimeIntegration::backward_euler && configured.value("rule", "fixed") != "fixed";
+    const bool two_pass =
+        make_integrator(reg, cfg.at("solver"), "")->needs_affine_rate() && configured.value("rule", "fixed") != "fixed";
     json two_pass_record;
     const RepeatedReducedRuns timing = repeat_reduced_run(
         [&] {
@@ -177,10 +178,11 @@ class ReducedModel : public ExperimentKind {
             fixed["rule"] = "fixed";
             auto deconv = reg.deconvolvers.create(fixed, "/closure/deconvolver");
             auto quad = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
+            auto integrator = make_integrator(reg, cfg.at("solver"), "");
             MesoSolverOptions o1 = o;
             o1.snapshot_times.clear();
             const auto t0 = std::chrono::steady_clock::now();
-            MesoSolver first(*scene, *kernel, *deconv, *quad, o1);
+            MesoSolver first(*scene, *kernel, *deconv, *quad, *integrator, o1);
             if (oracles) first.set_oracles(*oracles);
             setup += seconds_since(t0);
             const MesoResult r1 = first.run();
@@ -193,10 +195,11 @@ class ReducedModel : public ExperimentKind {
           }
           auto deconv = reg.deconvolvers.create(deconvolver_cfg, "/closure/deconvolver");
           auto quad = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
+          auto integrator = make_integrator(reg, cfg.at("solver"), "");
           std::vector<std::pair<double, Eigen::VectorXd>> snapshots;
           o.on_snapshot = [&](double t, const Eigen::VectorXd& v) { snapshots.emplace_back(t, v); };
           const auto t_setup = std::chrono::steady_clock::now();
-          MesoSolver solver(*scene, *kernel, *deconv, *quad, o);
+          MesoSolver solver(*scene, *kernel, *deconv, *quad, *integrator, o);
           if (oracles) solver.set_oracles(*oracles);
           setup += seconds_since(t_setup);
           MesoResult r = solver.run();

@@ -140,6 +140,8 @@ class ReducedModel2D : public ExperimentKind {
           auto deconv = reg.deconvolvers.create(cfg.at("closure").at("deconvolver"), "/closure/deconvolver");
           auto on_x_faces = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
           auto on_y_faces = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
+          // The 2D section names no integrator yet: the paper's forward Euler under (5.21)–(5.22).
+          auto integrator = reg.integrators.create(json{{"name", "explicit"}}, "/solver");
           std::vector<std::pair<double, Field>> snapshots;
           MesoSolver2DOptions o = opt;
           if (run_count > 0) o.progress = nullptr;  // progress lines from the first run only
@@ -147,7 +149,7 @@ class ReducedModel2D : public ExperimentKind {
             snapshots.push_back({t, Field{vx, vy}});
           };
           const auto t_setup = std::chrono::steady_clock::now();
-          MesoSolver2D solver(*scene, *kernel, *deconv, *on_x_faces, *on_y_faces, o);
+          MesoSolver2D solver(*scene, *kernel, *deconv, *on_x_faces, *on_y_faces, *integrator, o);
           if (scene->initial_velocity) {  // the average (2.9) of the lattice's initial velocities
             const MesoFields f =
                 average_particles(scene->make_particles(), scene->box, *kernel, solver.coarse_mesh(), AveragingRequest{});

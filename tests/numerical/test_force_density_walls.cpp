@@ -126,7 +126,8 @@ TEST_P(ForceDensityWallsPrior, ChannelEqualsTheOneDimensionalNearWallModel) {
   auto dv = tikhonov(1e-6, prior), dn = tikhonov(1e-6, prior), d1 = tikhonov(1e-6, prior);
   ForceDensitySolver2D two(*c.scene, *c.kernel, *dv, *dn, lattice_rows_options());
   const auto quadrature = builtin_registry().quadratures.create(json{{"name", "exact"}}, "/q");
-  MesoSolver one(*c.scene, *c.kernel, *d1, *quadrature, near_wall_1d_options());
+  const auto integrator = builtin_registry().integrators.create(json{{"name", "backward_euler"}}, "/integrator");
+  MesoSolver one(*c.scene, *c.kernel, *d1, *quadrature, *integrator, near_wall_1d_options());
   // The forward operators (coarse nodes × fluid rows). The 1D model's is the window's integral h ψ(Y_i − y_j) (§4.2),
   // as if the wall went on for ever; the 2D model's is the average (2.9) of the particles in the box, divided by
   // ρ̄_i = ρ0 (1 − τ_i), τ_i the window's mass beyond the wall's outer face: A_2D = A_1D / (1 − τ_i), row by row.

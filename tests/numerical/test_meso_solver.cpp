@@ -35,7 +35,8 @@ KolmogorovRun run_kolmogorov(int order, const std::string& quadrature, double sp
   opt.spacing_over_eta = spacing_over_eta;
   opt.to_steady_state = false;
   opt.target_time = 0.15;  // the mode decays like exp(−ν κ² t), κ = 4π: e^{−24}
-  MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
+  auto integrator = builtin_registry().integrators.create(json{{"name", "explicit"}}, "/integrator");
+  MesoSolver solver(*scene, *kernel, *deconv, *quad, *integrator, opt);
   KolmogorovRun out{0, 0, solver.run()};
   const double kw = 2 * M_PI * k;
   double s = 0, norm = 0;
@@ -84,7 +85,8 @@ TEST(ReducedModel, StaggeredSchemeReachesASmoothSteadyStateInTheChannel) {
   auto quad = reg.quadratures.create(json{{"name", "exact"}}, "/quadrature");
   MesoSolverOptions opt;
   opt.scheme = MesoScheme::staggered;
-  MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
+  auto integrator = builtin_registry().integrators.create(json{{"name", "explicit"}}, "/integrator");
+  MesoSolver solver(*scene, *kernel, *deconv, *quad, *integrator, opt);
   const MesoResult r = solver.run();
   ASSERT_EQ(r.status, Status::converged) << r.message;
   const Eigen::Index n = r.v.size();
@@ -109,7 +111,8 @@ TEST(ReducedModel, WallConstraintMapEqualsTheDirectPairSweep) {
   MesoSolverOptions opt;
   opt.scheme = MesoScheme::staggered;
   opt.wall_constraint_forces = true;
-  MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
+  auto integrator = builtin_registry().integrators.create(json{{"name", "explicit"}}, "/integrator");
+  MesoSolver solver(*scene, *kernel, *deconv, *quad, *integrator, opt);
   const Eigen::VectorXd y = solver.coarse_mesh().nodes();
   Eigen::VectorXd v(y.size());
   for (Eigen::Index n = 0; n < y.size(); ++n) v[n] = scene->analytic_vx(y[n]) * (1.0 + 0.3 * std::sin(7.0 * y[n]));
@@ -153,7 +156,8 @@ TEST(ReducedModel, FirstOrderBeatsZeroOrderUnderThePeriodicForce) {
     MesoSolverOptions opt;
     opt.scheme = MesoScheme::staggered;
     opt.wall_constraint_forces = true;
-    MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
+    auto integrator = builtin_registry().integrators.create(json{{"name", "explicit"}}, "/integrator");
+    MesoSolver solver(*scene, *kernel, *deconv, *quad, *integrator, opt);
     const MesoResult r = solver.run();
     ASSERT_EQ(r.status, Status::converged) << r.message;
     double e = 0.0;
@@ -189,7 +193,8 @@ TEST(ReducedModel, SetupIsIndependentOfTheStripWidth) {
     opt.wall_constraint_forces = true;
     opt.to_steady_state = false;
     opt.target_time = 0.05;
-    MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
+    auto integrator = builtin_registry().integrators.create(json{{"name", "explicit"}}, "/integrator");
+    MesoSolver solver(*scene, *kernel, *deconv, *quad, *integrator, opt);
     const MesoResult r = solver.run();
     ASSERT_EQ(r.status, Status::target_time) << r.message;
     v[i++] = r.v;

@@ -75,7 +75,8 @@ CellularRun run_cellular(const Box& box, const json& deconvolver, MesoSolver2DOp
   opt.on_snapshot = [&](double, const Eigen::VectorXd& vx, const Eigen::VectorXd& vy) {
     out.snapshot_amplitudes.push_back(fit(mesh, k, vx, vy, nullptr));
   };
-  MesoSolver2D solver(*box.scene, *box.kernel, *deconv, *qx, *qy, opt);
+  auto integrator = builtin_registry().integrators.create(json{{"name", "explicit"}}, "/integrator");
+  MesoSolver2D solver(*box.scene, *box.kernel, *deconv, *qx, *qy, *integrator, opt);
   out.result = solver.run();
   out.amplitude = fit(solver.coarse_mesh(), k, out.result.vx, out.result.vy, &out.off_mode);
   if (opt.discretization == Discretization::coarse_coarse) {
@@ -138,12 +139,13 @@ TEST(ReducedModel2D, EqualsTheOneDimensionalModelOnAnXInvariantFlow) {
   o1.to_steady_state = false;
   o1.target_time = t_end;
   o1.spacing_over_eta = 0.5;
-  MesoSolver one(*scene, *kernel, *d1, *q1, o1);
+  auto i1 = reg.integrators.create(json{{"name", "explicit"}}, "/i"), i2 = reg.integrators.create(json{{"name", "explicit"}}, "/i");
+  MesoSolver one(*scene, *kernel, *d1, *q1, *i1, o1);
   const MesoResult r1 = one.run();
   MesoSolver2DOptions o2 = to_time(t_end);
   o2.spacing_over_eta = 0.5;
   o2.divergence_order = 2;  // the 1D staggered scheme's difference
-  MesoSolver2D two(*scene, *kernel, *d2, *qx, *qy, o2);
+  MesoSolver2D two(*scene, *kernel, *d2, *qx, *qy, *i2, o2);
   const MesoResult2D r2 = two.run();
   ASSERT_EQ(r1.status, Status::target_time) << r1.message;
   ASSERT_EQ(r2.status, Status::target_time) << r2.message;
@@ -232,7 +234,8 @@ TEST(ReducedModel2D, FluxFormConservesMomentum) {
   for (int order : {2, 4}) {
   MesoSolver2DOptions opt;
   opt.divergence_order = order;
-  MesoSolver2D solver(*box.scene, *box.kernel, *deconv, *qx, *qy, opt);
+  auto integrator = builtin_registry().integrators.create(json{{"name", "explicit"}}, "/integrator");
+  MesoSolver2D solver(*box.scene, *box.kernel, *deconv, *qx, *qy, *integrator, opt);
   const int n = solver.coarse_mesh().size();
   Eigen::VectorXd vx(n), vy(n);
   for (int k = 0; k < n; ++k) {

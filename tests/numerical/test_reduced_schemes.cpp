@@ -27,7 +27,8 @@ Eigen::VectorXd step_response(MesoScheme scheme, const Eigen::VectorXd& p, doubl
   auto quad = reg.quadratures.create(json{{"name", "exact"}}, "/quadrature");
   MesoSolverOptions opt;
   opt.scheme = scheme;
-  MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
+  auto integrator = builtin_registry().integrators.create(json{{"name", "explicit"}}, "/integrator");
+  MesoSolver solver(*scene, *kernel, *deconv, *quad, *integrator, opt);
   std::string issue;
   solver.set_velocity(Eigen::VectorXd::Zero(p.size()));
   EXPECT_TRUE(solver.step(dt, issue)) << issue;
@@ -95,7 +96,8 @@ std::pair<double, double> channel_odd_even(MesoScheme scheme, Eigen::VectorXd& l
   opt.snapshot_times = {1.0};
   Eigen::VectorXd at_one;
   opt.on_snapshot = [&](double, const Eigen::VectorXd& v) { at_one = v; };
-  MesoSolver solver(*scene, *kernel, *deconv, *quad, opt);
+  auto integrator = builtin_registry().integrators.create(json{{"name", "explicit"}}, "/integrator");
+  MesoSolver solver(*scene, *kernel, *deconv, *quad, *integrator, opt);
   const MesoResult r = solver.run();
   EXPECT_EQ(r.status, Status::target_time) << r.message;
   last = r.v;

@@ -11,6 +11,7 @@
 #include "core/base/registry.hpp"
 #include "core/closure/deconvolver.hpp"
 #include "core/closure/stress_quadrature.hpp"
+#include "core/reduced/implicit_closure.hpp"
 #include "core/reduced/meso_solver.hpp"
 #include "core/reduced/meso_solver_2d.hpp"
 #include "core/sph/scene.hpp"
@@ -46,7 +47,8 @@ MesoResult run(const Kolmogorov& k, const json& solver) {
   const Registry& reg = builtin_registry();
   auto deconv = reg.deconvolvers.create(json{{"name", "landweber"}, {"order", 1}}, "/deconvolver");
   auto quad = reg.quadratures.create(json{{"name", "exact"}}, "/quadrature");
-  MesoSolver s(*k.scene, *k.kernel, *deconv, *quad, meso_options_from(solver));
+  auto integrator = make_integrator(reg, solver, "");
+  MesoSolver s(*k.scene, *k.kernel, *deconv, *quad, *integrator, meso_options_from(solver));
   return s.run();
 }
 

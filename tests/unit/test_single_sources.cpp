@@ -37,7 +37,6 @@ TEST(SingleSource, ReducedSolverSchemaDefaultsAreTheOptionsDefaults) {
   EXPECT_EQ(r.wall_constraint_forces, d.wall_constraint_forces);
   EXPECT_EQ(r.wall_node_value, d.wall_node_value);
   EXPECT_EQ(r.balance, d.balance);
-  EXPECT_EQ(r.time_integration, d.time_integration);
 }
 
 // Every enumeration's name table round-trips, and an unknown name is a ConfigError listing the choices.
@@ -63,7 +62,6 @@ TEST(SingleSource, EveryEnumerationHasOneNameTable) {
   expect_names_round_trip<SmoothingKernel::Type>();
   expect_names_round_trip<MesoScheme>();
   expect_names_round_trip<MesoBalance>();
-  expect_names_round_trip<TimeIntegration>();
   expect_names_round_trip<WallNodeValue>();
   expect_names_round_trip<BoundaryOracle>();
   EXPECT_EQ(row_status(Status::target_time), "ok");

@@ -1,0 +1,48 @@
+#pragma once
+// The integrator family (DESIGN.md §2): how a stepped reduced model's coarse state advances by one step, apart from
+// the model's right-hand side (PETSc's TS apart from its RHS function). The model offers its rate f(u) = du/dt and
+// the entries it holds (the wall nodes (5.6)/(5.14), or the boundary oracle's); the integrator advances u.
+// Built-ins (registered by register_integrators, named as a spec's solver.time_integration names them):
+//   explicit        forward Euler, the paper's (5.11)–(5.14): u += dt f(u), then the held entries reset;
+//   backward_euler  implicit in the whole rate, for a rate affine in u (a closure with fixed parameters): the
+//                   Jacobian probed once with unit vectors and checked for affinity at a second point, then
+//                   (I − dt J) u' = u + dt (f(b) − J b) over the free entries, b the probe's base.
+// An instance serves one model (backward Euler keeps the Jacobian it probed on its first step).
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/base/registry.hpp"
+
+namespace closurelab {
+
+// What a model offers an integrator.
+struct CoarseRate {
+  // du/dt at u; false on a numerical issue, said in `issue`.
+  std::function<bool(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue)> at;
+  // The entries a step leaves at their held values (null: none is held).
+  const std::vector<bool>* held = nullptr;
+  const Eigen::VectorXd* held_values = nullptr;
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  // Advances u (held entries at their values) by dt; false on a numerical issue, said in `issue`.
+  virtual bool step(const CoarseRate& f, double dt, Eigen::VectorXd& u, std::string& issue) = 0;
+  // Whether the integrator is right only for a rate affine in u (a closure linear in the coarse velocity: fixed
+  // parameters, no Krylov iterate); such a spec is checked at validation (check_implicit_closure).
+  virtual bool needs_affine_rate() const { return false; }
+  // The model's rate or held entries changed (e.g. oracles switched on): forget what was learned of them.
+  virtual void reset() {}
+};
+
+// The held entries of u set to their values.
+void hold_entries(const CoarseRate& f, Eigen::VectorXd& u);
+
+// Adds the built-in integrators to r.integrators.
+void register_integrators(Registry& r);
+
+}  // namespace closurelab

@@ -37,6 +37,19 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
+// A row's params with the scene's earlier key names as the current ones (the channels' and kolmogorov's eta_over_ly
+// is eta_over_l, as the runner reads a stored row), so one column holds the averaging width of every scene.
+json params_by_current_names(json params) {
+  if (params.is_object() && params.contains("scene") && params["scene"].is_object()) {
+    json& scene = params["scene"];
+    if (scene.contains("eta_over_ly") && !scene.contains("eta_over_l")) {
+      scene["eta_over_l"] = scene["eta_over_ly"];
+      scene.erase("eta_over_ly");
+    }
+  }
+  return params;
+}
+
 }  // namespace
 
 std::string table_to_csv(const json& table) {
@@ -47,7 +60,8 @@ std::string table_to_csv(const json& table) {
   for (const json& row : table["rows"]) {
     std::map<std::string, std::string> r;
     for (const char* section : {"params", "errors", "cost"})
-      if (row.contains(section)) flatten(row[section], section, r);
+      if (row.contains(section))
+        flatten(std::string(section) == "params" ? params_by_current_names(row[section]) : row[section], section, r);
     for (const auto& [k, v] : r) columns.insert(k);
     for (const char* key : {"id", "label", "status"})
       if (row.contains(key) && row[key].is_string()) r[key] = row[key].get<std::string>();

@@ -38,7 +38,8 @@ _SHORT_LIST = 8
 
 def _rename_legacy_node_sets(obj):
     """Rows written before the node sets were named for what they hold reported the fluid nodes as "all" beside
-    "all_nodes"; such a pair is read as "fluid_nodes" and "all_nodes" (the numbers are the same)."""
+    "all_nodes"; such a pair is read as "fluid_nodes" and "all_nodes" (the numbers are the same). The summaries
+    (experiments/summaries/summary_util.py) read rows through this one function too."""
     if isinstance(obj, dict):
         if "all" in obj and "all_nodes" in obj and "fluid_nodes" not in obj:
             obj["fluid_nodes"] = obj.pop("all")

@@ -33,7 +33,7 @@ def spct(x, digits=3):
     return f"{100.0 * x:+.{digits}g} %"
 
 
-NOISY_SPREAD = 0.10
+NOISY_SPREAD = 0.10  # the runner's status line uses the same threshold (kNoisySpread, core/base/timing_noise.hpp)
 NOISY_NOTE = ("*noisy*: the reduced model's repeated runs spread by more than 10 % ((median - min) / min): its time, "
               "and so the speed-up, is not resolved to better than that spread (load from other work).")
 

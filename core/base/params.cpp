@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include "core/base/errors.hpp"
 #include "core/base/json_reader.hpp"
@@ -93,10 +94,39 @@ std::string allowed_keys(const ParamSchema& schema) {
   return s.empty() ? "(none)" : s;
 }
 
+// Earlier names of parameters, read as their current name wherever a schema has the current name and not the
+// earlier one: the averaging width was eta_over_ly on the channels and kolmogorov (eta_over_l on every scene now), so
+// committed specs and stored rows that say eta_over_ly still read.
+const std::vector<std::pair<std::string, std::string>>& earlier_names() {
+  static const std::vector<std::pair<std::string, std::string>> v = {{"eta_over_ly", "eta_over_l"}};
+  return v;
+}
+
+bool in_schema(const ParamSchema& schema, const std::string& name) {
+  for (const auto& p : schema)
+    if (p.name == name) return true;
+  return false;
+}
+
+// `given` with every earlier name its schema knows under its current name; both names given is an error.
+json with_current_names(const json& given, const ParamSchema& schema, const std::string& path) {
+  if (!given.is_object()) return given;
+  json out = given;
+  for (const auto& [earlier, current] : earlier_names()) {
+    if (!out.contains(earlier) || in_schema(schema, earlier) || !in_schema(schema, current)) continue;
+    if (out.contains(current))
+      throw ConfigError(path + "/" + earlier, "an earlier name of " + current + ", which is given too; give one");
+    out[current] = out[earlier];
+    out.erase(earlier);
+  }
+  return out;
+}
+
 }  // namespace
 
-json resolve_params(const json& given, const ParamSchema& schema, const std::string& path,
+json resolve_params(const json& given_as_written, const ParamSchema& schema, const std::string& path,
                     const std::vector<std::string>& passthrough) {
+  const json given = with_current_names(given_as_written, schema, path);
   if (!given.is_null() && !given.is_object())
     throw ConfigError(path, "expected an object, got " + std::string(given.type_name()));
   json out = json::object();

@@ -1,7 +1,10 @@
 #include "core/base/repeated_timing.hpp"
 
+#include "core/base/timing_noise.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -28,11 +31,12 @@ void retain_freed_memory() {
 
 ParamSchema timing_schema() {
   const TimingPolicy d;
-  return {integer_param("min_repeats", d.min_repeats, "runs of the reduced model timed at least (budget permitting)", 1, 1000),
+  return {integer_param("min_repeats", d.min_repeats, "runs of the reduced model timed at least, whatever the budget", 1, 1000),
           integer_param("max_repeats", d.max_repeats, "runs timed at most", 1, 10000),
           number_param("budget_seconds", d.budget_seconds,
-                       "no new timed run once this much timed work is spent (a run longer than it is timed once)", 0.0,
-                       {}, true),
+                       "no new timed run once this much timed work is spent and min_repeats runs are done (a run "
+                       "longer than it is timed min_repeats times)",
+                       0.0, {}, true),
           number_param("stability", d.stability,
                        "stop after min_repeats once the last min_repeats/2 + 1 runs lowered the minimum by no more "
                        "than this fraction",
@@ -70,6 +74,8 @@ TimingStats timing_stats(std::vector<double> seconds) {
   return s;
 }
 
+// min_repeats is a true minimum: the budget ends the runs only once min_repeats are done (a run longer than the
+// budget is timed min_repeats times, and the record says "budget").
 TimingStats repeat_until_stable(const std::function<double()>& run_once, const TimingPolicy& policy) {
   retain_freed_memory();
   std::vector<double> seconds;
@@ -90,7 +96,7 @@ TimingStats repeat_until_stable(const std::function<double()>& run_once, const T
         break;
       }
     }
-    if (spent >= policy.budget_seconds) {
+    if (n >= policy.min_repeats && spent >= policy.budget_seconds) {
       stopped_by = "budget";
       break;
     }
@@ -98,6 +104,19 @@ TimingStats repeat_until_stable(const std::function<double()>& run_once, const T
   TimingStats s = timing_stats(std::move(seconds));
   s.stopped_by = stopped_by;
   return s;
+}
+
+std::string noisy_timing_note(const json& row) {
+  const json* t = nullptr;
+  if (row.is_object() && row.contains("cost") && row["cost"].is_object() && row["cost"].contains("reduced_timing"))
+    t = &row["cost"]["reduced_timing"];
+  if (!t || !t->is_object() || !t->contains("spread") || !(*t)["spread"].is_number()) return "";
+  const double spread = (*t)["spread"].get<double>();
+  if (!(spread > kNoisySpread)) return "";
+  char text[120];
+  std::snprintf(text, sizeof text, "; noisy timing: the reduced runs spread by %.3g %% (> %.3g %%)", 100.0 * spread,
+                100.0 * kNoisySpread);
+  return text;
 }
 
 TimingStats time_repeatedly(const std::function<void()>& work, const TimingPolicy& policy) {

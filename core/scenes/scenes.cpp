@@ -93,6 +93,11 @@ ParamSchema wall_model_params() {
 }
 
 json upgraded_scene_params(json scene) {
+  // The channels' and kolmogorov's averaging width was stored as eta_over_ly before every scene named it eta_over_l.
+  if (scene.is_object() && scene.contains("eta_over_ly") && !scene.contains("eta_over_l")) {
+    scene["eta_over_l"] = scene["eta_over_ly"];
+    scene.erase("eta_over_ly");
+  }
   if (scene.is_object() && scene.value("name", "") == "cylinder-lattice" && !scene.contains("wall_model"))
     for (const ParamSpec& p : wall_model_params()) scene[p.name] = p.default_value;
   return scene;
@@ -125,7 +130,10 @@ ParamSchema channel_schema() {
   ParamSchema schema{
       integer_param("n_y", 48, "particle rows across L_y (epsilon' = L_y / n_y)", 8, 4096),
       integer_param("n_x", 12, "particle columns of the periodic strip (x-extent = n_x epsilon')", 4, 100000),
-      number_param("eta_over_ly", 1.0 / 16.0, "averaging scale eta'/L_y; walls are 3 eta' thick (5.3)", 0.0, 0.5, true),
+      number_param("eta_over_l", 1.0 / 16.0,
+                   "averaging scale eta'/L_y (L = L_y; eta_over_ly, its earlier name, still read); walls are 3 eta' "
+                   "thick (5.3)",
+                   0.0, 0.5, true),
       number_param("ly", 1.0, "domain height L_y", 0.0, {}, true),
       number_param("rho", 1.0, "fluid density", 0.0, {}, true),
       number_param("mu", 1.0, "dynamic viscosity", 0.0, {}, true),
@@ -141,7 +149,8 @@ ParamSchema kolmogorov_schema() {
   ParamSchema schema{
       integer_param("n_y", 48, "particle rows across L_y (epsilon' = L_y / n_y)", 8, 4096),
       integer_param("n_x", 12, "particle columns of the periodic strip", 4, 100000),
-      number_param("eta_over_ly", 1.0 / 16.0, "averaging scale eta'/L_y", 0.0, 0.5, true),
+      number_param("eta_over_l", 1.0 / 16.0, "averaging scale eta'/L_y (L = L_y; eta_over_ly, its earlier name, still read)",
+                   0.0, 0.5, true),
       number_param("ly", 1.0, "domain height L_y", 0.0, {}, true),
       number_param("rho", 1.0, "fluid density", 0.0, {}, true),
       number_param("mu", 1.0, "dynamic viscosity", 0.0, {}, true),
@@ -164,15 +173,15 @@ Scene make_channel(const std::string& name, const json& p, const std::string& pa
   const double ly = p.at("ly").get<double>();
   s.dx = ly / s.ny;
   s.box = PeriodicBox{s.nx * s.dx, ly, true, false};
-  s.eta = p.at("eta_over_ly").get<double>() * ly;
+  s.eta = p.at("eta_over_l").get<double>() * ly;
   s.has_walls = true;
   s.wall_lo = 3.0 * s.eta;
   s.wall_hi = ly - 3.0 * s.eta;
-  check_rows_off_wall_surfaces(s, ly, path + "/eta_over_ly", "n_y");
+  check_rows_off_wall_surfaces(s, ly, path + "/eta_over_l", "n_y");
   int fluid_rows = 0;
   for (int j = 0; j < s.ny; ++j) fluid_rows += !s.is_wall((j + 0.5) * s.dx);
   if (s.wall_hi - s.wall_lo < 4.0 * s.dx || fluid_rows < 4)
-    throw ConfigError(path + "/eta_over_ly", "eta' too large for the domain: the walls (3 eta' each) leave " +
+    throw ConfigError(path + "/eta_over_l", "eta' too large for the domain: the walls (3 eta' each) leave " +
                                                  std::to_string(fluid_rows) + " fluid rows (need >= 4; need eta'/L_y < 1/6)");
   s.wall_model = parse_name<WallModel>(p.at("wall_model").get<std::string>(), path + "/wall_model");
   s.ghost_beta_max = p.at("ghost_beta_max").get<double>();
@@ -181,7 +190,7 @@ Scene make_channel(const std::string& name, const json& p, const std::string& pa
   read_sph_discretization(s, p, path);
   check_strip_width(s, path);
   if (s.wall_lo < s.smoothing_kernel().support())
-    throw ConfigError(path + "/eta_over_ly", "walls (3 eta') thinner than the SPH support; raise eta' or n_y");
+    throw ConfigError(path + "/eta_over_l", "walls (3 eta') thinner than the SPH support; raise eta' or n_y");
   s.x_invariant = true;
   s.stress_components = {"xy"};
   return s;
@@ -233,7 +242,7 @@ void register_scenes(Registry& r) {
         const double ly = p.at("ly").get<double>();
         s->dx = ly / s->ny;
         s->box = PeriodicBox{s->nx * s->dx, ly, true, true};
-        s->eta = p.at("eta_over_ly").get<double>() * ly;
+        s->eta = p.at("eta_over_l").get<double>() * ly;
         s->rho0 = p.at("rho").get<double>();
         s->phase_viscosity = {p.at("mu").get<double>()};
         read_sph_discretization(*s, p, "");
@@ -241,7 +250,7 @@ void register_scenes(Registry& r) {
         const double support = s->smoothing_kernel().support();
         if (ly < 3.0 * (support + 0.5 * s->dx))
           throw ConfigError("/n_y", "the periodic height must hold 3 SPH supports plus the list skin; raise n_y");
-        if (s->eta * 6.0 > ly) throw ConfigError("/eta_over_ly", "eta' too large for the domain: need 6 eta' <= L_y");
+        if (s->eta * 6.0 > ly) throw ConfigError("/eta_over_l", "eta' too large for the domain: need 6 eta' <= L_y");
         const double g = p.at("g").get<double>(), nu = s->phase_viscosity[0] / s->rho0;
         const double kw = 2.0 * M_PI * p.at("k").get<int>() / ly;
         s->force_x = [=](double y) { return g * std::sin(kw * y); };

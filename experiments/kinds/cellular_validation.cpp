@@ -7,6 +7,7 @@
 #include "core/base/metrics.hpp"
 #include "core/scenes/analytic.hpp"
 #include "experiments/kinds/direct_reference.hpp"
+#include "experiments/kinds/validation_row.hpp"
 #include "experiments/runner/provenance.hpp"
 
 namespace closurelab {
@@ -42,40 +43,27 @@ json run_cellular_validation(const Scene& scene, const AveragingKernel& kernel, 
   const DirectReference direct = run_direct_reference(scene, kernel, opt, mesh);
   const ParticleSystem& ps = direct.particles;
   const SphRunResult& sph = direct.run;
-  json row;
-  row["status"] = row_status(sph.status);
-  row["direct_sph"] = sph.to_json();
-  if (!sph.message.empty()) row["message"] = sph.message;
-  row["scene_derived"] = {{"dx", scene.dx},
-                          {"eta", scene.eta},
-                          {"h", scene.h},
-                          {"sound_speed", scene.sound_speed},
-                          {"analytic_peak", scale},
-                          {"particle_mass", scene.particle_mass()},
-                          {"wavenumber", k},
-                          {"steady_amplitude", mode.steady_amplitude},
-                          {"initial_amplitude", mode.initial_amplitude},
-                          {"decay_rate", mode.decay_rate},
-                          {"mesh_nodes_per_side", nodes}};
+  json row = validation_row_header(sph, {{"dx", scene.dx},
+                                         {"eta", scene.eta},
+                                         {"h", scene.h},
+                                         {"sound_speed", scene.sound_speed},
+                                         {"analytic_peak", scale},
+                                         {"particle_mass", scene.particle_mass()},
+                                         {"wavenumber", k},
+                                         {"steady_amplitude", mode.steady_amplitude},
+                                         {"initial_amplitude", mode.initial_amplitude},
+                                         {"decay_rate", mode.decay_rate},
+                                         {"mesh_nodes_per_side", nodes}});
   if (sph.status == Status::numerical_issue) return row;
 
   // Particles against the exact field at the final time.
   const double amp = mode.amplitude(sph.time), fitted = fitted_cellular_amplitude(ps, k);
-  std::vector<std::size_t> moving;
-  for (std::size_t a = 0; a < ps.size(); ++a)
-    if (!ps.fixed[a]) moving.push_back(a);
-  const Eigen::Index np = static_cast<Eigen::Index>(moving.size());
-  Eigen::VectorXd ux(np), uy(np), rx(np), ry(np);
-  for (Eigen::Index i = 0; i < np; ++i) {
-    const std::size_t a = moving[i];
-    const Vec2 v = amp * cellular_mode(ps.x[a], ps.y[a], k);
-    ux[i] = ps.vx[a], uy[i] = ps.vy[a], rx[i] = v.x(), ry[i] = v.y();
-  }
   json errors;
   errors["amplitude"] = {{"fitted", fitted},
                          {"analytic", amp},
                          {"relative_difference", amp != 0.0 ? (fitted - amp) / amp : fitted / scale}};
-  errors["particles_vs_analytic"] = vector_error_norms(ux, uy, rx, ry, scale).to_json();
+  errors["particles_vs_analytic"] =
+      particles_vs_field(ps, [&](double x, double y) { return Vec2(amp * cellular_mode(x, y, k)); }, scale);
 
   // Gaussian averages on the mesh: a separable even window multiplies the mode by its 2D symbol at
   // (k, k) / 2π (for the Gaussian, exp(−|k|² η² / 4) with |k|² = 2k²).

@@ -93,9 +93,18 @@ json reference_key(const ReferenceRequest& r) {
     solver.erase("formulation");
     solver.erase("transport_background_pressure_factor");
   }
+  // The channels and kolmogorov stored their averaging width as eta_over_ly before every scene named it eta_over_l:
+  // their key keeps that name, so the references stored before stay valid.
+  json scene = r.scene;
+  const std::string scene_name = scene.value("name", "");
+  if (scene.contains("eta_over_l") &&
+      (scene_name == "poiseuille-uniform" || scene_name == "poiseuille-periodic" || scene_name == "kolmogorov")) {
+    scene["eta_over_ly"] = scene["eta_over_l"];
+    scene.erase("eta_over_l");
+  }
   return {{"kind", "direct_sph"},
           {"engine_version", sph_engine_version},
-          {"scene", r.scene},
+          {"scene", scene},
           {"kernel", r.kernel},
           {"solver", solver},
           {"observe_spacing", r.observe_spacing},

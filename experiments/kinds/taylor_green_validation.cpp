@@ -6,6 +6,7 @@
 
 #include "core/base/metrics.hpp"
 #include "core/sph/sph_engine.hpp"
+#include "experiments/kinds/validation_row.hpp"
 #include "experiments/runner/provenance.hpp"
 
 namespace closurelab {
@@ -31,43 +32,33 @@ json run_taylor_green_validation(const Scene& scene, SphRunOptions opt) {
   };
   ParticleSystem ps = scene.make_particles();
   const SphRunResult sph = run_direct_sph(scene, ps, opt);
-  json row;
-  row["status"] = row_status(sph.status);
-  row["direct_sph"] = sph.to_json();
-  if (!sph.message.empty()) row["message"] = sph.message;
-  row["scene_derived"] = {{"dx", scene.dx},
-                          {"h", scene.h},
-                          {"sound_speed", scene.sound_speed},
-                          {"particle_mass", scene.particle_mass()},
-                          {"kinematic_viscosity", scene.phase_viscosity[0] / scene.rho0},
-                          {"decay_rate", tg.decay_rate},
-                          {"formulation", name_of(opt.engine.formulation)}};
+  json row = validation_row_header(sph, {{"dx", scene.dx},
+                                         {"h", scene.h},
+                                         {"sound_speed", scene.sound_speed},
+                                         {"particle_mass", scene.particle_mass()},
+                                         {"kinematic_viscosity", scene.phase_viscosity[0] / scene.rho0},
+                                         {"decay_rate", tg.decay_rate},
+                                         {"formulation", name_of(opt.engine.formulation)}});
   if (sph.status == Status::numerical_issue) return row;
   json errors;
   errors["max_speed"] = {{"times", times},           {"computed", computed}, {"exact", exact},
                          {"relative_error", relative}, {"worst", worst},       {"final", last}};
   // The particles against the exact field at the end, relative to its largest speed.
-  std::vector<std::size_t> moving;
-  for (std::size_t a = 0; a < ps.size(); ++a)
-    if (!ps.fixed[a]) moving.push_back(a);
-  const Eigen::Index np = static_cast<Eigen::Index>(moving.size());
-  Eigen::VectorXd ux(np), uy(np), rx(np), ry(np);
-  for (Eigen::Index i = 0; i < np; ++i) {
-    const std::size_t a = moving[i];
-    const Vec2 v = tg.velocity_at(ps.x[a], ps.y[a], sph.time);
-    ux[i] = ps.vx[a], uy[i] = ps.vy[a], rx[i] = v.x(), ry[i] = v.y();
-  }
-  errors["particles_vs_exact"] = vector_error_norms(ux, uy, rx, ry, tg.max_speed(sph.time)).to_json();
+  errors["particles_vs_exact"] = particles_vs_field(
+      ps, [&](double x, double y) { return tg.velocity_at(x, y, sph.time); }, tg.max_speed(sph.time));
   // The disorder: the spread of the summation number density at the end (on the lattice it is uniform).
   ParticleSystem probe = ps;
   SphEngine engine(scene, probe, opt.engine);
   engine.compute_accelerations();
   double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0.0;
-  for (std::size_t a : moving) {
+  std::size_t moving = 0;
+  for (std::size_t a = 0; a < ps.size(); ++a) {
+    if (ps.fixed[a]) continue;
     const double n = engine.number_density()[a];
     lo = std::min(lo, n), hi = std::max(hi, n), sum += n;
+    ++moving;
   }
-  const double mean = sum / static_cast<double>(moving.size());
+  const double mean = sum / static_cast<double>(moving);
   errors["number_density"] = {{"spread_over_mean", (hi - lo) / mean},
                               {"max_deviation_from_mean", std::max(hi - mean, mean - lo) / mean}};
   row["errors"] = errors;

@@ -12,6 +12,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/run_progress.hpp"
+#include "core/base/timing_noise.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/runner/cell_scheduler.hpp"
 #include "experiments/runner/out_folder.hpp"
@@ -164,6 +165,7 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
         const double mean = computed > 1 ? computed_seconds / static_cast<double>(computed - 1) : first_seconds;
         if (left > 0) line += ", about " + format_seconds(mean * static_cast<double>(left) / slots) + " left";
         if (row.contains("error") && row["error"].is_string()) line += ": " + row["error"].get<std::string>();
+        line += noisy_timing_note(row);
         log_line(line);
         return true;
       });

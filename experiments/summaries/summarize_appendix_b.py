@@ -16,6 +16,12 @@ import sys
 from summary_util import slope, load_table, dirty_mark
 
 
+def _eta(row):
+    """The row's eta'/L_y: eta_over_l, or eta_over_ly in rows stored before every scene named it eta_over_l."""
+    scene = row["params"]["scene"]
+    return scene["eta_over_l"] if "eta_over_l" in scene else scene["eta_over_ly"]
+
+
 def main(path):
     table = load_table(path)
     prov = table["provenance"]
@@ -23,12 +29,12 @@ def main(path):
     print(f"{table['description']}\n")
     print(f"Generated from `{path}`; commit `{prov['git_commit']}`, {prov['compiler']}, {prov['build_type']}, "
           f"{prov['threads']} thread(s), {prov['date_utc']}, command `{prov['command']}`. Table complete: {table['complete']}.\n")
-    rows = sorted((r for r in table["rows"] if r.get("status") == "ok"), key=lambda r: r["params"]["scene"]["eta_over_ly"])
+    rows = sorted((r for r in table["rows"] if r.get("status") == "ok"), key=lambda r: _eta(r))
     print("| eta'/L_y | steps | interior nodes used | max \\|T_c,xx\\| SPH (interior) | max \\|T_c,xx\\| App. B | max \\|SPH - App. B\\| | scaled s / eta'^2 |")
     print("|---|---|---|---|---|---|---|")
     scaled = []
     for r in rows:
-        eta = r["params"]["scene"]["eta_over_ly"]
+        eta = _eta(r)
         e, c, d, p = r["errors"], r["cost"], r["scene_derived"], r["params"]["scene"]
         l1, l2, rho, g, mu = d["l1"], d["l2"], p["rho"], p["g"], p["mu"]
         centre, width = 0.5 * (l1 + l2), l2 - l1
@@ -48,7 +54,7 @@ def main(path):
               f"{e['convective_xx_appendix_b_interior_max']:.4g} | {e['convective_xx_vs_appendix_b_max_abs']:.3g} | {s / eta ** 2:.4f} |")
     for r in table["rows"]:
         if r.get("status") != "ok":
-            print(f"| {r['params']['scene']['eta_over_ly']:.4g} | {r.get('status')}: {r.get('error', '')} |||||")
+            print(f"| {_eta(r):.4g} | {r.get('status')}: {r.get('error', '')} |||||")
     if len(scaled) >= 2:
         print(f"\nFitted exponent p in s ~ eta'^p over {len(scaled)} eta' values: **{slope(scaled):.3f}** (App. B: 2; "
               "s / eta'^2 = 1 + O(eta'^2)).")

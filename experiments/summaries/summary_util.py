@@ -4,6 +4,11 @@ import math
 import os
 import sys
 
+# The repository's python/ package (closurelab.tables), found from this file's place, so that a summary run from any
+# folder reads rows as the pandas reader reads them.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "python"))
+from closurelab.tables import _rename_legacy_node_sets  # noqa: E402
+
 
 def fmt(x, digits=3):
     """A table cell: '-' for missing, integers as they are, other numbers to `digits` significant digits."""
@@ -28,7 +33,7 @@ def spct(x, digits=3):
     return f"{100.0 * x:+.{digits}g} %"
 
 
-NOISY_SPREAD = 0.10
+NOISY_SPREAD = 0.10  # the runner's status line uses the same threshold (kNoisySpread, core/base/timing_noise.hpp)
 NOISY_NOTE = ("*noisy*: the reduced model's repeated runs spread by more than 10 % ((median - min) / min): its time, "
               "and so the speed-up, is not resolved to better than that spread (load from other work).")
 
@@ -67,19 +72,6 @@ def slope(points):
 
 def _joined(values):
     return ", ".join(str(v) for v in values) if values else "unknown"
-
-
-def _rename_legacy_node_sets(obj):
-    """Rows written before the node sets were named for what they hold reported the fluid nodes as "all" beside
-    "all_nodes"; such a pair is read as "fluid_nodes" and "all_nodes" (the numbers are the same)."""
-    if isinstance(obj, dict):
-        if "all" in obj and "all_nodes" in obj and "fluid_nodes" not in obj:
-            obj["fluid_nodes"] = obj.pop("all")
-        for v in obj.values():
-            _rename_legacy_node_sets(v)
-    elif isinstance(obj, list):
-        for v in obj:
-            _rename_legacy_node_sets(v)
 
 
 def load_table(path):

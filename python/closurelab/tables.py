@@ -16,7 +16,8 @@ Short lists of numbers (at most 8, such as snapshot times) are kept as lists; lo
 left out: read them with `load_fields`. Also `message` (the row's error or status message, where it has one) and
 `table` (the path read, which `load_fields` uses). The table's own keys (`experiment`, `kind`, `description`,
 `complete`, `path`) are in `df.attrs`. Rows written before the node sets were renamed (`all` beside `all_nodes`)
-are read with `fluid_nodes`, as the summaries read them.
+are read with `fluid_nodes`, as the summaries read them; rows that name the averaging width `eta_over_ly` (the
+channels and kolmogorov before every scene said `eta_over_l`) are read with `params.scene.eta_over_l`.
 
 `load_fields(row)`: the row's coarse fields as numpy arrays. `row` is a record of `load` (a pandas Series; the table
 is read again from its `table` column) or a row as parsed from the JSON (a dict). A 2D row (`fields`): `x` (nx,),
@@ -36,6 +37,9 @@ _SHORT_LIST = 8
 
 
 def _rename_legacy_node_sets(obj):
+    """Rows written before the node sets were named for what they hold reported the fluid nodes as "all" beside
+    "all_nodes"; such a pair is read as "fluid_nodes" and "all_nodes" (the numbers are the same). The summaries
+    (experiments/summaries/summary_util.py) read rows through this one function too."""
     if isinstance(obj, dict):
         if "all" in obj and "all_nodes" in obj and "fluid_nodes" not in obj:
             obj["fluid_nodes"] = obj.pop("all")
@@ -44,6 +48,15 @@ def _rename_legacy_node_sets(obj):
     elif isinstance(obj, list):
         for v in obj:
             _rename_legacy_node_sets(v)
+
+
+def _rename_legacy_scene_keys(rows):
+    """The channels' and kolmogorov's averaging width was stored as `eta_over_ly` before every scene named it
+    `eta_over_l`: such a row's scene is read with `eta_over_l` (as `closurelab export` and the runner read it)."""
+    for row in rows:
+        scene = row.get("params", {}).get("scene") if isinstance(row, dict) else None
+        if isinstance(scene, dict) and "eta_over_ly" in scene and "eta_over_l" not in scene:
+            scene["eta_over_l"] = scene.pop("eta_over_ly")
 
 
 _cache = {}
@@ -59,6 +72,7 @@ def read_table(path):
         if not isinstance(table, dict) or not isinstance(table.get("rows"), list):
             raise ValueError(f"{path}: not a closurelab results table (no \"rows\" array)")
         _rename_legacy_node_sets(table["rows"])
+        _rename_legacy_scene_keys(table["rows"])
         _cache.clear()  # one table at a time: fields make tables large
         _cache[key] = table
     return _cache[key]

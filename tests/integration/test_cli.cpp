@@ -106,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"unknown key", tiny_spec(R"(, "n_z": 3)"), "/base/scene/n_z"},
         BadCase{"wrong type", tiny_spec(R"(, "n_x": "twelve")"), "/base/scene/n_x"},
         BadCase{"negative spacing", tiny_spec(R"(, "n_y": -48)"), "/base/scene/n_y"},
-        BadCase{"eta too large", tiny_spec(R"(, "eta_over_ly": 0.2)"), "/base/scene/eta_over_ly"},
+        BadCase{"eta too large", tiny_spec(R"(, "eta_over_ly": 0.2)"), "/base/scene/eta_over_l"},
         BadCase{"non-finite", R"({"name":"tiny","kind":"direct_sph_validation","base":{"scene":{"name":"poiseuille-uniform","g":1e999}}})",
                 "malformed JSON"},
         BadCase{"malformed JSON", R"({"name": "tiny", "kind": )", "malformed JSON"},

@@ -70,9 +70,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInvocation{"deconvolve --frob", {"--frob", "--matrix", "--rhs", "--method", "--help"}},
         BadInvocation{"deconvolve", {"--matrix", "usage: closurelab deconvolve"}},
         BadInvocation{"deconvolve --matrix", {"--matrix", "missing value"}},
-        BadInvocation{"export --frob", {"'--frob'", "--csv", "--out", "--help"}},
+        BadInvocation{"export --frob", {"'--frob'", "--csv", "--long", "--out", "--help"}},
         BadInvocation{"export", {"TABLE.json", "usage: closurelab export"}},
-        BadInvocation{"export t.json", {"--csv"}},
         BadInvocation{"run spec.json --set kappa", {"--set", "KEY=VALUE"}}),
     [](const ::testing::TestParamInfo<BadInvocation>& info) {
       std::string name = std::to_string(info.index) + "_";

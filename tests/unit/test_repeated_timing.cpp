@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/base/repeated_timing.hpp"
+#include "core/base/timing_noise.hpp"
 
 using namespace closurelab;
 
@@ -54,15 +55,34 @@ TEST(RepeatedTiming, NeverMoreThanTheLargestCountNorPastTheBudget) {
   const TimingStats m = repeat_until_stable(std::ref(falling), p);
   EXPECT_EQ(m.repeats(), 6);
   EXPECT_EQ(m.stopped_by, "max_repeats");
-  // A run longer than the budget is timed once, and the record says why.
+  // The budget ends it once min_repeats runs are done: a run longer than the whole budget is still timed
+  // min_repeats times (min_repeats is a true minimum), and the record says the budget stopped it.
   p = TimingPolicy{};
+  p.min_repeats = 3;
   p.budget_seconds = 10.0;
-  ScriptedRuns slow{{12.0}};
+  ScriptedRuns slow{{12.0, 11.0, 13.0, 10.0}};  // the minimum still falling: only the budget stops it
   const TimingStats b = repeat_until_stable(std::ref(slow), p);
-  EXPECT_EQ(b.repeats(), 1);
+  EXPECT_EQ(b.repeats(), 3);
   EXPECT_EQ(b.stopped_by, "budget");
-  ScriptedRuns medium{{4.0}};
-  EXPECT_EQ(repeat_until_stable(std::ref(medium), p).repeats(), 3);  // 4 + 4 + 4 >= 10
+  EXPECT_EQ(b.min, 11.0);
+  p.min_repeats = 5;
+  ScriptedRuns medium{{4.0, 3.0, 2.0, 1.9, 1.0, 0.5}};  // 10 s spent by run 3, yet 5 runs
+  const TimingStats m5 = repeat_until_stable(std::ref(medium), p);
+  EXPECT_EQ(m5.repeats(), 5);
+  EXPECT_EQ(m5.stopped_by, "budget");
+  // Past min_repeats the budget still ends it before the rule calls the minimum stable.
+  ScriptedRuns longer{{4.0, 3.0, 2.0, 1.9, 1.0, 0.5, 0.25}};
+  p.budget_seconds = 12.2;
+  EXPECT_EQ(repeat_until_stable(std::ref(longer), p).repeats(), 6);  // 11.9 + 0.5 >= 12.2 at run 6
+}
+
+TEST(RepeatedTiming, ARowWhoseRunsSpreadAboveTheThresholdIsCalledNoisyInItsStatusLine) {
+  const auto row = [](double spread) { return json{{"cost", {{"reduced_timing", {{"spread", spread}}}}}}; };
+  EXPECT_EQ(noisy_timing_note(row(0.56)), "; noisy timing: the reduced runs spread by 56 % (> 10 %)");
+  EXPECT_EQ(noisy_timing_note(row(kNoisySpread)), "");  // at the threshold: not above it
+  EXPECT_EQ(noisy_timing_note(row(0.03)), "");
+  EXPECT_EQ(noisy_timing_note(json{{"cost", {{"speed_up", 3.0}}}}), "");  // a row not timed repeatedly
+  EXPECT_EQ(noisy_timing_note(json{{"status", "error"}}), "");
 }
 
 TEST(RepeatedTiming, SchemaDefaultsAreThePolicyDefaults) {

@@ -28,7 +28,7 @@ TEST(WallRows, TheIssuesCaseIsRefusedWithNearbyValidValues) {
     builtin_registry().scenes.create(channel(32, 0.078125), "/scene");
     FAIL() << "a row on the wall surface was accepted";
   } catch (const ConfigError& e) {
-    EXPECT_EQ(e.path(), "/scene/eta_over_ly");
+    EXPECT_EQ(e.path(), "/scene/eta_over_l");
     EXPECT_NE(e.message().find("lies on the wall surface"), std::string::npos) << e.message();
     EXPECT_NE(e.message().find("0.07291666667"), std::string::npos) << e.message();  // 7 / 96
     EXPECT_NE(e.message().find("0.08333333333"), std::string::npos) << e.message();  // 8 / 96

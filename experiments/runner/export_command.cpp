@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/base/json_reader.hpp"
 #include "experiments/runner/command_options.hpp"
 
 namespace closurelab {
@@ -93,7 +94,7 @@ int run_export_command(int argc, char** argv) {
               << "' itself: the CSV would overwrite its input; name another file\n";
     return 2;
   }
-  const std::string text = table_to_csv(read_json_file(table_file));
+  const std::string text = table_to_csv(read_table_file_guarded(table_file));  // any size the runner writes
   if (out_file.empty()) {
     std::cout << text;
     if (!std::cout.flush()) {

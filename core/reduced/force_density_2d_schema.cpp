@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 #include "core/reduced/force_density_2d.hpp"
 #include "core/reduced/implicit_closure.hpp"
 #include "core/reduced/reduced_grid.hpp"
@@ -161,7 +162,9 @@ TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorM
 
 void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, const ForceDensity2DOptions& o) {
   const TensorMesh2D coarse = force_density_coarse_mesh(scene, kernel, o.spacing_over_eta);
-  force_density_reconstruction_mesh(scene, coarse, o.reconstruction_refinement, o.reconstruction_y_nodes);
+  const TensorMesh2D recon =
+      force_density_reconstruction_mesh(scene, coarse, o.reconstruction_refinement, o.reconstruction_y_nodes);
+  check_force_density_2d_memory(coarse.size(), recon.size(), scene.x_invariant, "/solver/spacing_over_eta");
   // The pressure is linearised about the lattice with one dP/dn for every pair, which a van der Waals equation of
   // state with its own cross-phase attraction (7.1) does not have; in an x-invariant flow the density deviation stays
   // uniform (ṅ cancels pair by pair along each row), so the pressure's linearisation is never used there.

@@ -7,6 +7,7 @@
 
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 #include "core/closure/reconstruction.hpp"
 #include "core/sph/sph_run.hpp"
 
@@ -39,6 +40,7 @@ TensorMesh2D coarse_mesh_2d(const Scene& scene, const AveragingKernel& kernel, d
     throw ConfigError("/scene", "the 2D reduced model needs a doubly periodic box without walls; scene '" + scene.name +
                                     "' is not one");
   const double target = spacing_over_eta * kernel.eta();
+  check_mesh_2d_memory(std::round(scene.box.lx / target), std::round(scene.box.ly / target), "/solver/spacing_over_eta");
   const int nx = static_cast<int>(std::lround(scene.box.lx / target));
   const int ny = static_cast<int>(std::lround(scene.box.ly / target));
   if (nx < 4 || ny < 4)

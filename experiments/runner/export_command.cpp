@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/base/json_reader.hpp"
 #include "experiments/runner/command_options.hpp"
 
 namespace closurelab {
@@ -192,7 +193,7 @@ int run_export_command(int argc, char** argv) {
               << "' itself: the CSV would overwrite its input; name another file\n";
     return 2;
   }
-  const json table = read_json_file(table_file);
+  const json table = read_table_file_guarded(table_file);  // any size the runner writes
   const std::string text = args.has("--long") ? table_to_long_csv(table) : table_to_csv(table);
   if (out_file.empty()) {
     std::cout << text;

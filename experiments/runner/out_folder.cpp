@@ -40,7 +40,9 @@ void check_output_folder(const std::string& dir) {
     throw ConfigError("--out", "cannot create '" + dir + "': '" + parent.string() + "' is not writable: " + std::strerror(errno));
 }
 
-FolderLock::FolderLock(const std::string& dir, const std::string& command_line, const std::string& lock_name) {
+FolderLock::FolderLock(const std::string& dir, const std::string& command_line, const std::string& lock_name,
+                       LockMode mode)
+    : mode_(mode) {
   std::error_code ec;
   fs::create_directories(fs::path(dir) / "cells", ec);
   if (ec) throw std::runtime_error("cannot create folder '" + (fs::path(dir) / "cells").string() + "': " + ec.message());
@@ -61,15 +63,20 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command_line, 
     fd_ = -1;
     throw std::runtime_error("the lock file '" + file.string() + "' is not a regular file (remove it, or use another --out)");
   }
-  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+  if (::flock(fd_, (mode == LockMode::shared ? LOCK_SH : LOCK_EX) | LOCK_NB) != 0) {
+    // Held shared: by shards (their notes are in their own lock files); held exclusively: the note says by whom.
+    const bool by_shards = mode == LockMode::exclusive && ::flock(fd_, LOCK_SH | LOCK_NB) == 0;
     char buf[1024] = {0};
-    const ssize_t n = ::pread(fd_, buf, sizeof buf - 1, 0);
-    std::string holder = n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : "an unknown process";
+    const ssize_t n = by_shards ? 0 : ::pread(fd_, buf, sizeof buf - 1, 0);
+    std::string holder = by_shards ? "shards of a run (--shard; their lock files are " + dir + "/.closurelab.shard-*.lock)"
+                         : n > 0   ? std::string(buf, static_cast<std::size_t>(n))
+                                   : "an unknown process";
     while (!holder.empty() && holder.back() == '\n') holder.pop_back();
     ::close(fd_);
     fd_ = -1;
     throw FolderBusy("folder '" + dir + "' is in use by another run (" + holder + "); wait for it to finish or use another --out");
   }
+  if (mode == LockMode::shared) return;  // several holders: no one note
   char host[256] = {0};
   gethostname(host, sizeof host - 1);
   const std::time_t now = std::time(nullptr);
@@ -82,6 +89,9 @@ FolderLock::FolderLock(const std::string& dir, const std::string& command_line, 
 }
 
 FolderLock::~FolderLock() {
+  if (fd_ >= 0 && mode_ == LockMode::exclusive && ::ftruncate(fd_, 0) != 0) {
+    // The note stays; it names a run that is over, and the lock is free.
+  }
   if (fd_ >= 0) ::close(fd_);  // closing releases the flock
 }
 

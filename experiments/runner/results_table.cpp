@@ -137,7 +137,7 @@ bool write_table(const fs::path& file, const json& table, bool computed_any) {
   if (!computed_any) {
     try {
       if (fs::exists(file)) {
-        const json old = read_json_file(file.string());
+        const json old = read_table_file_guarded(file.string());
         if (old.value("complete", false) && table.value("complete", false) &&
             old.value("spec", json()) == table.at("spec") && old.value("rows", json()) == table.at("rows"))
           return false;

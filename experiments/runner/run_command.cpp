@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/kinds/reference_store.hpp"
 #include "experiments/runner/command_options.hpp"
@@ -75,6 +76,13 @@ const CommandSpec& run_command_spec() {
         "sets the dotted KEY (e.g. solver.kappa=0.1) in every cell, over the base, the axes and\n"
         "the cells; VALUE is read as JSON, else as a string; repeatable; validated like the spec",
         true, false, ValueForm::key_value},
+       {"--memory-limit", "SIZE",
+        "refuse at validation what needs more memory (e.g. 8GB, 512MiB; default: CLOSURELAB_MEMORY_LIMIT,\n"
+        "else half the physical memory)",
+        false, false, ValueForm::text, [](const std::string& v) { parse_byte_count(v, "--memory-limit"); }},
+       {"--max-cells", "N",
+        "refuse a matrix of more than N cells before expanding it (default: CLOSURELAB_MAX_CELLS, else 100000)",
+        false, false, ValueForm::positive_integer},
        {"--dry-run", "", "validates and prints every resolved cell (defaults filled in); runs and writes nothing"},
        {"--strict", "", "exit 3 when a row's status is not ok (numerical_issue, no_convergence), after writing it"}},
       "  Under mpirun (built with MPI) the K ranks share the cells, one at a time each, costliest first; rank 0\n"
@@ -98,6 +106,8 @@ int run_command(int argc, char** argv, const Registry& registry) {
   opt.force = args.has("--force");
   opt.strict = args.has("--strict");
   if (args.has("--shard")) opt.shard = parse_shard(args.value("--shard"));
+  if (args.has("--memory-limit")) set_memory_limit_bytes(parse_byte_count(args.value("--memory-limit"), "--memory-limit"));
+  if (args.has("--max-cells")) set_max_cells(std::strtoull(args.value("--max-cells").c_str(), nullptr, 10));
   const bool dry_run = args.has("--dry-run"), store_given = args.has("--store");
   const std::string store_dir = args.value("--store", default_reference_store_dir());
   const std::string spec_file = args.positional(0);

@@ -51,10 +51,12 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
   const auto& cells = matrix->cells;
   const std::string name = spec["name"].get<std::string>();
   const Shard& shard = options.shard;
-  std::unique_ptr<FolderLock> lock;
+  std::unique_ptr<FolderLock> lock, shard_lock;  // one lock per folder (out_folder.hpp): a shard holds it shared
   try {
-    lock = shard.active() ? std::make_unique<FolderLock>(options.out_dir, options.command_line, shard_lock_name(shard))
-                          : std::make_unique<FolderLock>(options.out_dir, options.command_line);
+    lock = std::make_unique<FolderLock>(options.out_dir, options.command_line, ".closurelab.lock",
+                                        shard.active() ? LockMode::shared : LockMode::exclusive);
+    if (shard.active())
+      shard_lock = std::make_unique<FolderLock>(options.out_dir, options.command_line, shard_lock_name(shard));
   } catch (const FolderBusy& e) {
     std::cerr << "error: " << e.what() << "\n";
     return give_up(2);

@@ -7,6 +7,7 @@
 #include "core/scenes/cylinder_lattice_scene.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/memory_limit.hpp"
+#include "core/base/numpy_uniform.hpp"
 #include "core/scenes/layered_scene.hpp"
 #include "core/scenes/taylor_green_scene.hpp"
 #include "core/scenes/wall_rows.hpp"
@@ -26,6 +27,12 @@ ParticleSystem Scene::make_particles() const {
       const double x = (i + 0.5) * dx;
       ps.add(x, y, m, ph, is_solid(x, y));
     }
+  }
+  if (position_perturbation > 0.0) {
+    NumpyLegacyUniform uniform(1);
+    const double shift = position_perturbation * dx;
+    for (std::size_t a = 0; a < ps.size(); ++a) ps.x[a] += uniform.next() * shift;
+    for (std::size_t a = 0; a < ps.size(); ++a) ps.y[a] += uniform.next() * shift;
   }
   if (initial_velocity)
     for (std::size_t a = 0; a < ps.size(); ++a) {

@@ -38,7 +38,11 @@ ParamSchema taylor_green_schema() {
                    0.0, 10.0),
       string_param("particle_mass", "cell_volume",
                    "cell_volume: m = rho0 L^2/n^2 (PySPH); lattice: m = rho0/n0, the lattice's summation density rho0",
-                   {"cell_volume", "lattice"})};
+                   {"cell_volume", "lattice"}),
+      number_param("perturbation", 0.0,
+                   "random shift of each particle off the lattice, a fraction of epsilon' (PySPH's --perturb: U[0, 1) "
+                   "draws of numpy.random.seed(1)); 0: the lattice",
+                   0.0, 0.5)};
   const ParamSchema sph = sph_discretization_params();
   schema.insert(schema.end(), sph.begin(), sph.end());
   return schema;
@@ -68,6 +72,7 @@ std::unique_ptr<Scene> make_taylor_green(const json& p) {
   s->taylor_green = Scene::TaylorGreenVortex{k, u, 2.0 * k * k * nu, s->rho0};
   const Scene::TaylorGreenVortex tg = *s->taylor_green;
   s->initial_velocity = [tg](double x, double y) { return tg.velocity_at(x, y, 0.0); };
+  s->position_perturbation = p.at("perturbation").get<double>();
   s->body_force = [](double, double) { return Vec2(0.0, 0.0); };
   s->x_invariant = false;
   s->stress_components = {"xx", "xy", "yx", "yy"};

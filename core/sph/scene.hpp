@@ -65,8 +65,13 @@ struct Scene {
   // Scenes whose force depends on x as well (not x-invariant) declare the whole body force per unit mass at a
   // point instead; when set, the engine uses it and ignores force_x.
   std::function<Vec2(double x, double y)> body_force;
-  // The initial velocity of the moving particles at their lattice sites (empty: at rest), set by make_particles().
+  // The initial velocity of the moving particles at their sites (empty: at rest), set by make_particles().
   std::function<Vec2(double x, double y)> initial_velocity;
+  // A random shift of every particle off its lattice site, as a fraction of dx (0: the lattice; make_particles()):
+  // x += ξ p dx, y += ζ p dx with ξ, ζ uniform in [0, 1), drawn as PySPH's taylor_green.py --perturb p draws them
+  // (numpy.random.seed(1), all ξ in lattice order, then all ζ; core/base/numpy_uniform.hpp), before the initial
+  // velocity is set at the shifted sites. Scenes with fixed particles keep it 0.
+  double position_perturbation = 0.0;
 
   // SPH discretization.
   SmoothingKernel::Type smoothing_type = SmoothingKernel::Type::quintic;
@@ -168,7 +173,7 @@ struct Scene {
   // the same on it; otherwise the scene itself.
   Scene narrowest_strip() const;
   // Lattice particles: (i + 1/2) dx, (j + 1/2) dx; walls and solids (is_solid) held fixed; mass so that the SPH density
-  // is rho0 (or rho0 dx² where mass_from_cell_volume is set).
+  // is rho0 (or rho0 dx² where mass_from_cell_volume is set); shifted by position_perturbation where it is set.
   ParticleSystem make_particles() const;
   // The particle mass rho0 dx² (PySPH's examples: ρ0 times the lattice cell's area) instead of rho0 / n0, n0 the
   // lattice's summation number density (whose SPH density at rest is exactly rho0).

@@ -27,10 +27,12 @@ namespace {
 
 struct History {
   std::vector<double> times, speed, error;  // max|v| and its relative error against U e^{bt}
+  std::vector<double> field_error;          // ‖v − v_exact‖₂ / ‖v_exact‖₂ over the particles
 };
 
-History run(int n, double end, double every) {
-  const auto scene = builtin_registry().scenes.create({{"name", "taylor-green"}, {"n", n}}, "/scene");
+History run(int n, double end, double every, double perturbation = 0.0) {
+  const auto scene = builtin_registry().scenes.create(
+      {{"name", "taylor-green"}, {"n", n}, {"perturbation", perturbation}}, "/scene");
   const Scene::TaylorGreenVortex tg = scene->taylor_green.value();
   ParticleSystem ps = scene->make_particles();
   SphRunOptions opt;
@@ -41,8 +43,14 @@ History run(int n, double end, double every) {
   for (int k = 1; k <= count; ++k) opt.snapshot_times.push_back(end * k / count);
   History h;
   opt.on_snapshot = [&](double t, const ParticleSystem& now) {
-    double v2 = 0.0;
-    for (std::size_t a = 0; a < now.size(); ++a) v2 = std::max(v2, now.vx[a] * now.vx[a] + now.vy[a] * now.vy[a]);
+    double v2 = 0.0, d2 = 0.0, e2 = 0.0;
+    for (std::size_t a = 0; a < now.size(); ++a) {
+      v2 = std::max(v2, now.vx[a] * now.vx[a] + now.vy[a] * now.vy[a]);
+      const Vec2 e = tg.velocity_at(now.x[a], now.y[a], t);
+      d2 += (now.vx[a] - e.x()) * (now.vx[a] - e.x()) + (now.vy[a] - e.y()) * (now.vy[a] - e.y());
+      e2 += e.x() * e.x() + e.y() * e.y();
+    }
+    h.field_error.push_back(std::sqrt(d2 / e2));
     const double exact = tg.max_speed(t);
     h.times.push_back(t);
     h.speed.push_back(std::sqrt(v2));
@@ -52,7 +60,8 @@ History run(int n, double end, double every) {
   EXPECT_EQ(r.status, Status::target_time);
   std::cout << "n = " << n << ": " << r.steps << " steps, dt = " << r.dt << ", " << r.wall_seconds << " s\n";
   for (std::size_t k = 0; k < h.times.size(); ++k)
-    std::cout << "  t = " << h.times[k] << ": max|v| = " << h.speed[k] << ", error " << h.error[k] << "\n";
+    std::cout << "  t = " << h.times[k] << ": max|v| = " << h.speed[k] << ", error " << h.error[k]
+              << ", field error " << h.field_error[k] << "\n";
   return h;
 }
 
@@ -104,4 +113,21 @@ TEST(TaylorGreenTransportVelocity, EqualsPySphsTvfToRoundOffWhenStartedAlike) {
               << h.speed[k] / pysph[k] - 1.0 << "\n";
     EXPECT_NEAR(h.speed[k] / pysph[k], 1.0, 1e-12) << "t = " << h.times[k];
   }
+}
+
+// The lattice start's loss is the lattice's: the flow's saddle points (L/4, L/4), ... strain the square lattice
+// (spacing × e^{±2πUt/L}, 1.9 and 0.53 by t = 0.1), which the summation density reads as a pressure error
+// c² δn/n several times the flow's ½ρU², and the background pressure does not undo a uniformly strained lattice
+// (Σ_b ∇W_ab vanishes on any lattice). Started off the lattice (`perturbation`, PySPH's --perturb: each particle
+// shifted by U[0, 0.3) ε' along x and y), the particles stay disordered and the field follows the exact one.
+// Measured (n = 25, the particles' velocity against the exact field, relative L2, at t = 0.4) with PySPH 1.0b1
+// (its taylor_green.py with uhat = u at t = 0, --nx 25 --tf 0.5 --pfreq 55 [--perturb 0.3]): 0.411 on the lattice,
+// 0.138 perturbed; this engine: 0.411 and 0.139 (max|v| 22.1 % low and 8.6 % high). Bounds: the lattice above 0.3 (the old start violates the
+// perturbed start's bound by 2x), the perturbed below 0.2 (1.4x its figure).
+TEST(TaylorGreenTransportVelocity, PerturbedStartKeepsTheFieldThatTheLatticeStartLoses) {
+  const History lattice = run(25, 0.4, 0.2), perturbed = run(25, 0.4, 0.2, 0.3);
+  ASSERT_EQ(lattice.field_error.size(), 2u);
+  ASSERT_EQ(perturbed.field_error.size(), 2u);
+  EXPECT_GT(lattice.field_error.back(), 0.3);
+  EXPECT_LT(perturbed.field_error.back(), 0.2);
 }

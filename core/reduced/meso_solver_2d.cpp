@@ -19,7 +19,18 @@ ParamSchema meso_solver_2d_schema() {
       number_param("kappa", d.kappa, "time-step coefficient of (5.21)-(5.22) (2D: half the 1D default)", 0.0, 1.0, true),
       number_param("spacing_over_eta", d.spacing_over_eta, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0),
       integer_param("divergence_order", d.divergence_order,
-                    "order of the staggered face-flux difference: 2 or 4 (both conservative, same face values)", 2, 4)};
+                    "order of the staggered face-flux difference: 2 or 4 (both conservative, same face values)", 2, 4),
+      string_param("equations", name_of(d.equations),
+                   "momentum: the linear model (density and pressure the lattice's, no convective stress); "
+                   "mass_momentum: the averaged balances (2.10)-(2.11) in (rho, rho v), with the convective flux of "
+                   "the closure's velocities (2.12) and the pressure of the coarse density (core/reduced/meso_solver_2d.hpp)",
+                   names_of<CoarseEquations>()),
+      bool_param("transport", d.transport,
+                 "mass_momentum: the mass flux (2.10) and the convective flux (2.11)-(2.12) (false: rho fixed)"),
+      bool_param("coarse_pressure", d.coarse_pressure,
+                 "mass_momentum: the pressure of the coarse density, -c_lat P(rho) I (false: the lattice's P*)"),
+      string_param("time_integration", "explicit",
+                   "the integrator family's member that steps the coarse state (closurelab list integrator)")};
   for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
   return schema;
 }
@@ -31,6 +42,9 @@ MesoSolver2DOptions meso_2d_options_from(const json& s) {
   o.divergence_order = s.at("divergence_order").get<int>();
   if (o.divergence_order != 2 && o.divergence_order != 4)
     throw ConfigError("/solver/divergence_order", "must be 2 or 4; got " + std::to_string(o.divergence_order));
+  o.equations = parse_name<CoarseEquations>(s.at("equations").get<std::string>(), "/solver/equations");
+  o.transport = s.at("transport").get<bool>();
+  o.coarse_pressure = s.at("coarse_pressure").get<bool>();
   read_time_loop(s, o);
   return o;
 }
@@ -79,6 +93,34 @@ Eigen::VectorXd face_difference(const TensorMesh2D& cells, const Eigen::VectorXd
   return out;
 }
 
+Eigen::VectorXd to_faces(const TensorMesh2D& cells, const Eigen::VectorXd& c, int axis, int order) {
+  const int nx = cells.nx(), ny = cells.ny();
+  const auto at = [&](int i, int j) { return c[cells.index((i % nx + nx) % nx, (j % ny + ny) % ny)]; };
+  const int di = axis == 0 ? 1 : 0, dj = axis == 0 ? 0 : 1;
+  Eigen::VectorXd out(cells.size());
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double inner = at(i - di, j - dj) + at(i, j);  // the two cells either side of face i
+      out[cells.index(i, j)] =
+          order == 4 ? (9.0 * inner - (at(i - 2 * di, j - 2 * dj) + at(i + di, j + dj))) / 16.0 : 0.5 * inner;
+    }
+  return out;
+}
+
+double lattice_pressure_factor(const Scene& scene) {
+  const SmoothingKernel w = scene.smoothing_kernel();
+  const int reach = static_cast<int>(std::ceil(w.support() / scene.dx)) + 1;
+  double n = 0.0, virial = 0.0;
+  for (int j = -reach; j <= reach; ++j)
+    for (int i = -reach; i <= reach; ++i) {
+      const double x = i * scene.dx, y = j * scene.dx, r = std::hypot(x, y);
+      if (r >= w.support()) continue;
+      n += w.w(r);
+      if (r > 0) virial += w.dw(r) / r * x * x;
+    }
+  return -virial / (scene.dx * scene.dx * n * n);
+}
+
 namespace {
 
 const std::vector<std::string> kXFaceComponents{"xx", "yx"}, kYFaceComponents{"xy", "yy"};
@@ -106,6 +148,13 @@ void check_meso_solver_2d(const Scene& scene, const AveragingKernel& kernel, con
 
 void check_meso_run_2d(const Scene& scene, const AveragingKernel& kernel, const json& solver,
                        const MesoSolver2DOptions& o, const std::string& path) {
+  if (o.equations == CoarseEquations::mass_momentum && o.discretization == Discretization::fine_fine)
+    throw ConfigError(path + "/equations", "mass_momentum averages the closure's velocity products with the forward "
+                                           "operator onto the coarse nodes; the fine_fine operator maps to the lattice "
+                                           "(use closure.discretization coarse_coarse or coarse_fine)");
+  if (o.equations == CoarseEquations::mass_momentum && scene.van_der_waals)
+    throw ConfigError(path + "/equations", "mass_momentum takes the weakly compressible equation of state; scene '" +
+                                               scene.name + "' has the van der Waals one");
   const TensorMesh2D coarse = coarse_mesh_2d(scene, kernel, o.spacing_over_eta);
   const double h = std::min(coarse.x.spacing, coarse.y.spacing);
   check_stepped_run(scene, solver, h, coarse_time_step(o.kappa, scene.rho0, h, scene.max_viscosity(), 0.0), path);
@@ -149,6 +198,8 @@ MesoSolver2D::MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, De
   }
   const MesoFields f = average_particles(lattice, scene.box, kernel, coarse_, AveragingRequest{});
   rho_bar_ = f.rho;
+  lattice_pressure_factor_ = lattice_pressure_factor(scene);
+  particle_mass_ = scene.particle_mass();
   fx_ = f.vx;
   fy_ = f.vy;
   vx_ = vy_ = Eigen::VectorXd::Zero(coarse_.size());
@@ -181,10 +232,9 @@ bool MesoSolver2D::deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std:
   return true;
 }
 
-bool MesoSolver2D::rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue) {
-  Eigen::VectorXd rx, ry;
-  if (!deconvolve(vx_, rx, issue) || !deconvolve(vy_, ry, issue)) return false;
-  const Reconstruction recon_x(solution_, 2, std::move(rx)), recon_y(solution_, 2, std::move(ry));
+bool MesoSolver2D::interaction_stress(FaceStress& s, std::string& issue) {
+  if (!deconvolve(vx_, s.rx, issue) || !deconvolve(vy_, s.ry, issue)) return false;
+  const Reconstruction recon_x(solution_, 2, s.rx), recon_y(solution_, 2, s.ry);
   const VelocitySampler sampler = [&](const std::vector<Vec2>& points) {
     Eigen::Matrix2Xd out(2, static_cast<Eigen::Index>(points.size()));
     out.row(0) = recon_x.sample(points).transpose();
@@ -192,8 +242,8 @@ bool MesoSolver2D::rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& i
     return out;
   };
   const auto t1 = std::chrono::steady_clock::now();
-  const QuadratureResult on_x = on_x_faces_.evaluate(sampler);
-  const QuadratureResult on_y = on_y_faces_.evaluate(sampler);
+  QuadratureResult on_x = on_x_faces_.evaluate(sampler);
+  QuadratureResult on_y = on_y_faces_.evaluate(sampler);
   quad_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   quad_cost_.add(on_x);
   quad_cost_.add(on_y);
@@ -202,19 +252,87 @@ bool MesoSolver2D::rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& i
       issue = r->message;
       return false;
     }
-  const Eigen::VectorXd &txx = on_x.stress.at("xx"), &tyx = on_x.stress.at("yx");
-  const Eigen::VectorXd &txy = on_y.stress.at("xy"), &tyy = on_y.stress.at("yy");
+  s.txx = std::move(on_x.stress.at("xx"));
+  s.tyx = std::move(on_x.stress.at("yx"));
+  s.txy = std::move(on_y.stress.at("xy"));
+  s.tyy = std::move(on_y.stress.at("yy"));
+  return true;
+}
+
+bool MesoSolver2D::rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue) {
+  FaceStress t;
+  if (!interaction_stress(t, issue)) return false;
   const int o = opt_.divergence_order;
-  const Eigen::VectorXd div_x = face_difference(coarse_, txx, 0, o) + face_difference(coarse_, txy, 1, o);
-  const Eigen::VectorXd div_y = face_difference(coarse_, tyx, 0, o) + face_difference(coarse_, tyy, 1, o);
+  const Eigen::VectorXd div_x = face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o);
+  const Eigen::VectorXd div_y = face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o);
   ax = div_x.cwiseQuotient(rho_bar_) + fx_;
   ay = div_y.cwiseQuotient(rho_bar_) + fy_;
   return true;
 }
 
-bool MesoSolver2D::step(double dt, std::string& issue) {
-  // The state u = (v̄_x, v̄_y), its rate (∂_t v̄_x, ∂_t v̄_y); no node is held (doubly periodic).
+bool MesoSolver2D::conservative_rate(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue) {
   const Eigen::Index n = vx_.size();
+  const Eigen::VectorXd mx = u.segment(0, n), my = u.segment(n, n);
+  rho_bar_ = u.segment(2 * n, n);
+  if (!(rho_bar_.array() > 0.0).all()) {
+    issue = "the coarse density is not positive at every node";
+    return false;
+  }
+  vx_ = mx.cwiseQuotient(rho_bar_);
+  vy_ = my.cwiseQuotient(rho_bar_);
+  FaceStress t;
+  if (!interaction_stress(t, issue)) return false;
+  const int o = opt_.divergence_order;
+  const auto faces = [&](const Eigen::VectorXd& c, int axis) { return to_faces(coarse_, c, axis, o); };
+  Eigen::VectorXd drho = Eigen::VectorXd::Zero(n);
+  if (opt_.transport) {
+    // Φ = ρ̄ [A(V⊗V) − v̄⊗A(V) − A(V)⊗v̄ + 2 v̄⊗v̄] at the centres (ρ̄v̄⊗v̄ − T_c of (2.12), V the closure's velocities).
+    const Eigen::VectorXd wx = op_.apply(t.rx), wy = op_.apply(t.ry);
+    const auto flux = [&](const Eigen::VectorXd& ra, const Eigen::VectorXd& rb, const Eigen::VectorXd& va,
+                          const Eigen::VectorXd& vb, const Eigen::VectorXd& wa, const Eigen::VectorXd& wb) {
+      const Eigen::VectorXd q = op_.apply(ra.cwiseProduct(rb));
+      return Eigen::VectorXd(rho_bar_.array() * (q.array() - va.array() * wb.array() - wa.array() * vb.array() +
+                                                 2.0 * va.array() * vb.array()));
+    };
+    const Eigen::VectorXd fxx = flux(t.rx, t.rx, vx_, vx_, wx, wx), fxy = flux(t.rx, t.ry, vx_, vy_, wx, wy),
+                          fyy = flux(t.ry, t.ry, vy_, vy_, wy, wy);
+    t.txx -= faces(fxx, 0);
+    t.tyx -= faces(fxy, 0);
+    t.txy -= faces(fxy, 1);
+    t.tyy -= faces(fyy, 1);
+    drho = -(face_difference(coarse_, faces(mx, 0), 0, o) + face_difference(coarse_, faces(my, 1), 1, o));
+  }
+  if (opt_.coarse_pressure) {
+    Eigen::VectorXd p(n);
+    for (Eigen::Index k = 0; k < n; ++k)
+      p[k] = -lattice_pressure_factor_ * scene_.pressure(rho_bar_[k] / particle_mass_, particle_mass_);
+    t.txx += faces(p, 0);
+    t.tyy += faces(p, 1);
+  }
+  dudt.resize(3 * n);
+  dudt.segment(0, n) = face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o) +
+                       rho_bar_.cwiseProduct(fx_);
+  dudt.segment(n, n) = face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o) +
+                       rho_bar_.cwiseProduct(fy_);
+  dudt.segment(2 * n, n) = drho;
+  return true;
+}
+
+bool MesoSolver2D::step(double dt, std::string& issue) {
+  const Eigen::Index n = vx_.size();
+  if (opt_.equations == CoarseEquations::mass_momentum) {  // u = (ρ̄v̄_x, ρ̄v̄_y, ρ̄)
+    const CoarseRate f{[&](const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& why) {
+      return conservative_rate(u, dudt, why);
+    }};
+    Eigen::VectorXd u(3 * n);
+    u << rho_bar_.cwiseProduct(vx_), rho_bar_.cwiseProduct(vy_), rho_bar_;
+    const bool ok = integrator_.step(f, dt, u, issue);
+    rho_bar_ = u.segment(2 * n, n);
+    vx_ = u.segment(0, n).cwiseQuotient(rho_bar_);
+    vy_ = u.segment(n, n).cwiseQuotient(rho_bar_);
+    return ok;
+  }
+  // The state u = (v̄_x, v̄_y), its rate (∂_t v̄_x, ∂_t v̄_y); no node is held (doubly periodic).
   const CoarseRate f{[&](const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& why) {
     vx_ = u.head(n);
     vy_ = u.tail(n);
@@ -234,8 +352,11 @@ bool MesoSolver2D::step(double dt, std::string& issue) {
 
 double MesoSolver2D::time_step() const {
   // (5.21)–(5.22) with the smaller spacing and the largest speed; ρ0 as the 1D model takes it.
+  // Under mass_momentum the signal speed is the sound speed plus the largest speed.
+  const double speed = (vx_.array().square() + vy_.array().square()).sqrt().maxCoeff() +
+                       (opt_.equations == CoarseEquations::mass_momentum ? scene_.sound_speed : 0.0);
   return coarse_time_step(opt_.kappa, scene_.rho0, std::min(coarse_.x.spacing, coarse_.y.spacing),
-                          scene_.max_viscosity(), (vx_.array().square() + vy_.array().square()).sqrt().maxCoeff());
+                          scene_.max_viscosity(), speed);
 }
 
 MesoResult2D MesoSolver2D::run() {

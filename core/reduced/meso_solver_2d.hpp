@@ -11,14 +11,35 @@
 // staggered difference of the same face values: divergence_order). One quadrature instance per face mesh.
 // Time step (5.21)–(5.22) with Δ the mesh spacing and |v̄| the largest speed.
 //
-// Left out because the scene does not need it (DESIGN.md §1): the particles stay on their lattice (§5.2), so
-// the pressure is the uniform P* and its stress has no divergence; the convective stress (2.12) is left out as
-// well: in the cellular flow ρ v·∇v is a gradient, balanced exactly by a pressure (DESIGN.md §5), so neither
-// moves the velocity (at the scene's Re = 1e-3 the direct SPH agrees with the Stokes amplitude to 0.05 %).
+// Two sets of equations (solver.equations):
+//   momentum       (the default) the linear model: the particles stay on their lattice (§5.2), so ρ̄ is the
+//                  lattice's, the pressure the uniform P* (its stress has no divergence), and the convective stress
+//                  is left out: in the cellular flow ρ v·∇v is a gradient balanced exactly by a pressure (DESIGN.md
+//                  §5), so neither moves the velocity (at Re = 1e-3 the direct SPH agrees with Stokes to 0.05 %).
+//   mass_momentum  the averaged balances (2.10)–(2.11) in full, conservative in (ρ̄, ρ̄v̄), for flows whose
+//                  particles travel (Taylor–Green at Re = 100):
+//                    ∂_t ρ̄ = −div(ρ̄v̄),   ∂_t(ρ̄v̄) = div(T_int − Φ − c_lat P(ρ̄) I) + ρ̄F̄,
+//                  Φ = ρ̄v̄⊗v̄ − T_c the convective flux with T_c (2.12) of the closure's velocities V:
+//                  Φ = ρ̄ [A(V⊗V) − v̄⊗A(V) − A(V)⊗v̄ + 2 v̄⊗v̄], A the averaging of the forward operator (so Φ = ρ̄ A(V⊗V)
+//                  when the closure reproduces its data, A V = v̄); P the scene's equation of state at ρ̄ (its
+//                  number density ρ̄/m), c_lat the lattice's pressure-stress factor (lattice_pressure_factor): the
+//                  pressure part of (5.24) for ρ, P slowly varying, as the paper's (5.27) argues (positions on the
+//                  lattice, so T_int from the quadrature carries the viscous stress and the constant P*). Each flux
+//                  is interpolated from the cell centres to the faces (order divergence_order) and differenced there,
+//                  so mass and momentum are conserved. Left out: the transport-velocity terms of a TVF reference
+//                  (ṽ − v is a particle-scale correction, zero on average for a smooth density) and the particles'
+//                  displacement from the lattice (the interaction stress is evaluated on the lattice).
+//                  The time step adds the sound speed to the largest speed in (5.21); `transport` and
+//                  `coarse_pressure` switch the two nonlinear parts off (both off: the momentum balance in
+//                  conservative form, equal to `momentum` to round-off, tested).
 #include <Eigen/Core>
+#include <array>
 #include <functional>
+#include <string_view>
+#include <utility>
 
 #include "core/averaging/averaging_kernel.hpp"
+#include "core/base/enum_names.hpp"
 #include "core/base/mesh.hpp"
 #include "core/base/params.hpp"
 #include "core/closure/deconvolver.hpp"
@@ -28,6 +49,15 @@
 #include "core/sph/scene.hpp"
 
 namespace closurelab {
+
+// solver.equations (above).
+enum class CoarseEquations { momentum, mass_momentum };
+
+template <>
+struct EnumNames<CoarseEquations> {
+  static constexpr std::array<std::pair<CoarseEquations, std::string_view>, 2> table{
+      {{CoarseEquations::momentum, "momentum"}, {CoarseEquations::mass_momentum, "mass_momentum"}}};
+};
 
 struct MesoSolver2DOptions : TimeLoopOptions {
   MesoSolver2DOptions() {
@@ -46,6 +76,9 @@ struct MesoSolver2DOptions : TimeLoopOptions {
   Discretization discretization = Discretization::coarse_coarse;
   double noise_level = 0.0;        // δ handed to the deconvolver's parameter rule
   double divergence_factor = 1e3;  // numerical_issue when max|v̄| exceeds this multiple of the analytic peak
+  CoarseEquations equations = CoarseEquations::momentum;
+  bool transport = true;        // mass_momentum: the mass flux of (2.10) and the convective flux Φ of (2.11)-(2.12)
+  bool coarse_pressure = true;  // mass_momentum: the pressure of the coarse density, −c_lat P(ρ̄) I
   // Called at each of the snapshot_times with v̄_x and v̄_y at the coarse nodes.
   std::function<void(double time, const Eigen::VectorXd& vx, const Eigen::VectorXd& vy)> on_snapshot;
 };
@@ -54,6 +87,14 @@ struct MesoResult2D : ClosureRunResult {
   TensorMesh2D mesh;        // the coarse nodes
   Eigen::VectorXd vx, vy;  // v̄ there (flat j * nx + i)
 };
+
+// The pressure-stress factor of the scene's lattice: particles of number density n on the square lattice of spacing
+// dx at the uniform pressure P carry the interaction stress (2.13) −c_lat P I, c_lat = −Σ_k F(r_k) x_k² / (dx² n²)
+// (F = w'(r)/r of the SPH kernel, n = Σ_k w(r_k) the summation density, self included); 1 in the continuum limit.
+double lattice_pressure_factor(const Scene& scene);
+// The centre values of a periodic field interpolated to the faces of `axis` (face i: the left or lower face of
+// cell i) at order 2 ((c_{i−1} + c_i)/2) or 4 ((−c_{i−2} + 9 c_{i−1} + 9 c_i − c_{i+1})/16).
+Eigen::VectorXd to_faces(const TensorMesh2D& cells, const Eigen::VectorXd& at_centres, int axis, int order);
 
 // The solver section of a 2D spec: schema (defaults from MesoSolver2DOptions{}) and reader.
 ParamSchema meso_solver_2d_schema();
@@ -97,11 +138,20 @@ class MesoSolver2D {
   const ForwardOperator& forward_operator() const { return op_; }
   const Eigen::VectorXd& vx() const { return vx_; }
   const Eigen::VectorXd& vy() const { return vy_; }
+  const Eigen::VectorXd& density() const { return rho_bar_; }  // ρ̄ (fixed under `momentum`)
   const Eigen::VectorXd& averaged_force_x() const { return fx_; }  // F̄ = (2.14) / (2.8) at the nodes
   const Eigen::VectorXd& averaged_force_y() const { return fy_; }
 
  private:
   bool deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std::string& issue);
+  // The closure's velocities on the solution grid and T_int on both face meshes (xx, yx on x-faces; xy, yy on
+  // y-faces) for the current v̄.
+  struct FaceStress {
+    Eigen::VectorXd rx, ry, txx, tyx, txy, tyy;
+  };
+  bool interaction_stress(FaceStress& s, std::string& issue);
+  // The rate of u = (ρ̄v̄_x, ρ̄v̄_y, ρ̄) under mass_momentum.
+  bool conservative_rate(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue);
 
   const Scene& scene_;
   Deconvolver& deconvolver_;
@@ -111,6 +161,7 @@ class MesoSolver2D {
   TensorMesh2D coarse_, fine_, solution_;
   ForwardOperator op_;
   Eigen::VectorXd vx_, vy_, rho_bar_, fx_, fy_;
+  double lattice_pressure_factor_ = 1.0, particle_mass_ = 1.0;
   long matvecs_ = 0;
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
   QuadratureCost quad_cost_;  // both quadratures' setup and calls

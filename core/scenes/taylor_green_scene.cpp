@@ -72,6 +72,9 @@ std::unique_ptr<Scene> make_taylor_green(const json& p) {
   s->taylor_green = Scene::TaylorGreenVortex{k, u, 2.0 * k * k * nu, s->rho0};
   const Scene::TaylorGreenVortex tg = *s->taylor_green;
   s->initial_velocity = [tg](double x, double y) { return tg.velocity_at(x, y, 0.0); };
+  // The same vortex as a cellular mode (−cos kx sin ky, sin kx cos ky) = cellular_mode(x + L/4, y + L/4), so that
+  // the 2D reduced model (mesh_2d) runs on it.
+  s->cellular_mode = Scene::CellularMode{k, 0.0, u, 2.0 * k * k * nu, 0.25 * l};
   s->position_perturbation = p.at("perturbation").get<double>();
   s->body_force = [](double, double) { return Vec2(0.0, 0.0); };
   s->x_invariant = false;

@@ -103,13 +103,15 @@ struct Scene {
   };
   std::optional<SineMode> steady_sine_mode;
   // Cellular flow (not x-invariant; core/scenes/analytic.hpp): at every time t the exact velocity is
-  // amplitude(t) · (sin kx cos ky, −cos kx sin ky), k the wavenumber, relaxing from the initial to the steady
-  // amplitude at the rate 2 k² ν (a Taylor–Green vortex decays when unforced).
+  // amplitude(t) · (sin kx' cos ky', −cos kx' sin ky') with x' = x + offset, y' = y + offset, k the wavenumber,
+  // relaxing from the initial to the steady amplitude at the rate 2 k² ν (a Taylor–Green vortex decays when
+  // unforced; the taylor-green scene's vortex is this mode with offset L/4).
   struct CellularMode {
     double wavenumber = 0.0;         // k = 2π m / L, radians per unit length
     double steady_amplitude = 0.0;   // g / (2 k² ν); 0 when unforced
     double initial_amplitude = 0.0;  // 0: from rest
     double decay_rate = 0.0;         // 2 k² ν
+    double offset = 0.0;             // the shift of both coordinates
     double amplitude(double t) const {
       return steady_amplitude + (initial_amplitude - steady_amplitude) * std::exp(-decay_rate * t);
     }

@@ -10,6 +10,7 @@
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/metrics.hpp"
+#include "core/reduced/implicit_closure.hpp"
 #include "core/reduced/meso_solver_2d.hpp"
 #include "core/scenes/analytic.hpp"
 #include "experiments/kinds/direct_reference.hpp"
@@ -26,10 +27,11 @@ struct Field {
   Eigen::VectorXd x, y;
 };
 
-Field mode_field(const TensorMesh2D& mesh, double k, double amplitude) {
+Field mode_field(const TensorMesh2D& mesh, const Scene::CellularMode& mode, double amplitude) {
   Field f{Eigen::VectorXd(mesh.size()), Eigen::VectorXd(mesh.size())};
+  const double k = mode.wavenumber, s = mode.offset;
   for (int n = 0; n < mesh.size(); ++n) {
-    const Vec2 v = amplitude * cellular_mode(mesh.node(n).x(), mesh.node(n).y(), k);
+    const Vec2 v = amplitude * cellular_mode(mesh.node(n).x() + s, mesh.node(n).y() + s, k);
     f.x[n] = v.x();
     f.y[n] = v.y();
   }
@@ -87,6 +89,15 @@ class ReducedModel2D : public ExperimentKind {
     out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
     out["solver"] = resolve_section(cell, "solver", meso_solver_2d_schema(), path);
     check_time_loop(out["solver"], path + "/solver");
+    {  // the integrator: registered, and able to serve the closure and the equations
+      const auto integrator = make_integrator(reg, out["solver"], path);
+      check_implicit_closure(out["solver"], *integrator, out["closure"]["deconvolver"], path);
+      if (integrator->needs_affine_rate() && out["solver"].at("equations") == "mass_momentum")
+        throw ConfigError(path + "/solver/time_integration",
+                          out["solver"].at("time_integration").get<std::string>() +
+                              " needs a rate affine in the coarse state; mass_momentum's is not (convective flux, "
+                              "pressure of the density, v = (rho v) / rho): use an explicit integrator");
+    }
     out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
@@ -111,9 +122,18 @@ class ReducedModel2D : public ExperimentKind {
     return out;
   }
 
-  // Rows stored before timing.min_seconds existed.
+  // Rows stored before timing.min_seconds and the solver's equations, transport, coarse_pressure and
+  // time_integration existed (the linear model under forward Euler, as computed).
   json upgraded_params(json stored) const override {
-    return upgraded_reduced_params(ExperimentKind::upgraded_params(std::move(stored)));
+    stored = upgraded_reduced_params(ExperimentKind::upgraded_params(std::move(stored)));
+    if (stored.is_object() && stored.contains("solver") && stored["solver"].is_object()) {
+      json& s = stored["solver"];
+      const json defaults = {
+          {"equations", "momentum"}, {"transport", true}, {"coarse_pressure", true}, {"time_integration", "explicit"}};
+      for (const auto& [key, value] : defaults.items())
+        if (!s.contains(key)) s[key] = value;
+    }
+    return stored;
   }
 
   json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
@@ -140,8 +160,7 @@ class ReducedModel2D : public ExperimentKind {
           auto deconv = reg.deconvolvers.create(cfg.at("closure").at("deconvolver"), "/closure/deconvolver");
           auto on_x_faces = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
           auto on_y_faces = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
-          // The 2D section names no integrator yet: the paper's forward Euler under (5.21)–(5.22).
-          auto integrator = reg.integrators.create(json{{"name", "explicit"}}, "/solver");
+          auto integrator = make_integrator(reg, cfg.at("solver"), "");
           std::vector<std::pair<double, Field>> snapshots;
           MesoSolver2DOptions o = opt;
           if (run_count > 0) o.progress = nullptr;  // progress lines from the first run only
@@ -161,7 +180,7 @@ class ReducedModel2D : public ExperimentKind {
             repeats_identical = repeats_identical && r.vx == reduced.vx && r.vy == reduced.vy && r.steps == reduced.steps;
           else {
             if (opt.discretization == Discretization::coarse_coarse) {
-              const Eigen::VectorXd m = mode_field(solver.coarse_mesh(), k, 1.0).x;
+              const Eigen::VectorXd m = mode_field(solver.coarse_mesh(), mode, 1.0).x;
               landweber_e_h = m.dot(solver.forward_operator().apply(m)) / m.squaredNorm();
             }
           }
@@ -173,10 +192,10 @@ class ReducedModel2D : public ExperimentKind {
     const TensorMesh2D& mesh = reduced.mesh;
 
     // The exact field and its average (each mode times the kernel's symbol at (k, k) / 2π) at the final time.
-    const Field unit = mode_field(mesh, k, 1.0), reduced_field{reduced.vx, reduced.vy};
+    const Field unit = mode_field(mesh, mode, 1.0), reduced_field{reduced.vx, reduced.vy};
     const double e = kernel->symbol(Vec2(k, k) / (2.0 * M_PI));
-    const Field exact = mode_field(mesh, k, mode.amplitude(reduced.time)),
-                averaged = mode_field(mesh, k, e * mode.amplitude(reduced.time));
+    const Field exact = mode_field(mesh, mode, mode.amplitude(reduced.time)),
+                averaged = mode_field(mesh, mode, e * mode.amplitude(reduced.time));
     json errors = {{"vs_analytic", norms(reduced_field, exact, scale)},
                    {"vs_averaged_analytic", norms(reduced_field, averaged, scale)}};
     // The amplitude on the mode against the exact one, and the Landweber prediction e / (1 − (1 − e)^{n+1}) with
@@ -222,14 +241,14 @@ class ReducedModel2D : public ExperimentKind {
       errors["vs_averaged_direct_sph"] = norms(reduced_field, direct_field, scale);
       // The reference's own error: the averaged direct SPH against the averaged exact field at its final time.
       errors["direct_sph_vs_averaged_analytic"] =
-          norms(direct_field, mode_field(mesh, k, e * mode.amplitude(direct_time)), scale);
+          norms(direct_field, mode_field(mesh, mode, e * mode.amplitude(direct_time)), scale);
       fields["direct_average"] = field_json(direct_field);
       direct->record_into(row);
       json transient = json::array();
       for (std::size_t s = 0; s < opt.snapshot_times.size(); ++s) {
         const double t = opt.snapshot_times[s];
         json snap = {{"t_over_tau", t / tau}, {"time", t}};
-        const Field avg_exact = mode_field(mesh, k, e * mode.amplitude(t));
+        const Field avg_exact = mode_field(mesh, mode, e * mode.amplitude(t));
         if (s < reduced_snapshots.size() && s < direct->snapshots.size()) {
           const Field& r = reduced_snapshots[s].second;
           const Field dsnap = average_of(direct->snapshots[s].particles);

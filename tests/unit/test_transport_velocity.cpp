@@ -227,9 +227,18 @@ TEST(TransportVelocity, TaylorGreenSceneIsPySphs) {
     EXPECT_DOUBLE_EQ(ps.vy[a], std::sin(2 * M_PI * ps.x[a]) * std::cos(2 * M_PI * ps.y[a]));
     EXPECT_FALSE(ps.fixed[a]);
   }
-  // The exact pressure p = −¼ ρ U² e^{2bt} (cos 4πx + cos 4πy), and the time unit L/U.
+  // The exact pressure p = −¼ ρ U² e^{2bt} (cos 4πx + cos 4πy); the vortex is also the cellular mode shifted by
+  // L/4 (the 2D reduced model's exact solution), so the time unit is its decay time 1/(2k²ν) = Re/(8π²).
   EXPECT_NEAR(s->taylor_green->pressure_at(0.0, 0.0, 0.0), -0.5, 1e-15);
-  EXPECT_DOUBLE_EQ(s->time_scale(), 1.0);
+  EXPECT_NEAR(s->time_scale(), 100.0 / (8.0 * M_PI * M_PI), 1e-14);
+  ASSERT_TRUE(s->cellular_mode.has_value());
+  for (const Vec2 p : {Vec2(0.1, 0.7), Vec2(0.33, 0.21), Vec2(0.9, 0.05)}) {
+    const double k = s->cellular_mode->wavenumber, o = s->cellular_mode->offset;
+    const Vec2 mode(std::sin(k * (p.x() + o)) * std::cos(k * (p.y() + o)), -std::cos(k * (p.x() + o)) * std::sin(k * (p.y() + o)));
+    const Vec2 v = s->taylor_green->velocity_at(p.x(), p.y(), 0.3);
+    EXPECT_NEAR(v.x(), s->cellular_mode->amplitude(0.3) * mode.x(), 1e-14);
+    EXPECT_NEAR(v.y(), s->cellular_mode->amplitude(0.3) * mode.y(), 1e-14);
+  }
   EXPECT_NE(test_support::config_error([] {
               builtin_registry().scenes.create({{"name", "taylor-green"}, {"re", 0.0}}, "/scene");
             }).find("/scene/re"),

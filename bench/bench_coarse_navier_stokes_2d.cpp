@@ -16,7 +16,8 @@ namespace {
 
 void CoarseNavierStokes2D_Step(benchmark::State& state) {
   const int m = static_cast<int>(state.range(0));
-  const TensorMesh2D mesh{UniformMesh1D::cell_centred(0.0, 1.0, m, true), UniformMesh1D::cell_centred(0.0, 1.0, m, true)};
+  const TensorMesh2D mesh{UniformMesh1D::cell_centred(0.0, 1.0, m, true),
+                          UniformMesh1D::cell_centred(0.0, 1.0, m, true)};
   CoarseNavierStokes2D ns(mesh, 1.0, 0.01, {}, {});
   Eigen::VectorXd vx(mesh.size()), vy(mesh.size());
   const double k = 2.0 * M_PI;

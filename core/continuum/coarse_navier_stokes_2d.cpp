@@ -7,6 +7,7 @@
 #include <unsupported/Eigen/FFT>
 #include <vector>
 
+#include "core/averaging/averaging.hpp"
 #include "core/sph/scene.hpp"
 
 namespace closurelab {
@@ -62,13 +63,13 @@ bool doubly_periodic(const UniformMesh1D& a) {
 
 }  // namespace
 
-CoarseNavierStokes2D::CoarseNavierStokes2D(TensorMesh2D mesh, double density, double viscosity,
-                                           Eigen::VectorXd force_x, Eigen::VectorXd force_y,
-                                           CoarseNavierStokes2DOptions options)
+CoarseNavierStokes2D::CoarseNavierStokes2D(TensorMesh2D mesh, double density, double viscosity, Eigen::VectorXd force_x,
+                                           Eigen::VectorXd force_y, CoarseNavierStokes2DOptions options)
     : mesh_(std::move(mesh)), rho_(density), nu_(viscosity / density), opt_(options) {
   if (!doubly_periodic(mesh_.x) || !doubly_periodic(mesh_.y))
-    throw std::invalid_argument("coarse Navier-Stokes: the mesh must be periodic in x and y with at least 4 nodes "
-                                "along a side and period = count * spacing");
+    throw std::invalid_argument(
+        "coarse Navier-Stokes: the mesh must be periodic in x and y with at least 4 nodes "
+        "along a side and period = count * spacing");
   if (!(density > 0.0) || !(viscosity > 0.0))
     throw std::invalid_argument("coarse Navier-Stokes: density and viscosity must be positive");
   if (!(opt_.cfl > 0.0) || !(opt_.viscous_number > 0.0) || !(opt_.max_time_step > 0.0))
@@ -233,14 +234,34 @@ void sampled_body_force(const Scene& scene, const TensorMesh2D& mesh, Eigen::Vec
   }
 }
 
+void averaged_body_force(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& mesh,
+                         Eigen::VectorXd& fx, Eigen::VectorXd& fy) {
+  ParticleSystem lattice = scene.make_particles();
+  for (std::size_t a = 0; a < lattice.size(); ++a) {
+    const Vec2 f = scene.body_force ? scene.body_force(lattice.x[a], lattice.y[a])
+                                    : Vec2(scene.force_x ? scene.force_x(lattice.y[a]) : 0.0, 0.0);
+    lattice.vx[a] = f.x();
+    lattice.vy[a] = f.y();
+  }
+  const MesoFields f = average_particles(lattice, scene.box, kernel, mesh, AveragingRequest{});
+  fx = f.vx;
+  fy = f.vy;
+}
+
 std::unique_ptr<CoarseNavierStokes2D> coarse_navier_stokes_for(const Scene& scene, const TensorMesh2D& mesh,
-                                                               CoarseNavierStokes2DOptions options) {
+                                                               CoarseNavierStokes2DOptions options,
+                                                               const AveragingKernel* average_force) {
   if (scene.has_walls || !scene.box.periodic_x || !scene.box.periodic_y || scene.solid_at ||
       scene.phase_viscosity.size() != 1)
-    throw std::invalid_argument("the coarse continuum baseline needs a doubly periodic box of one phase without walls "
-                                "or solids; scene '" + scene.name + "' is not one");
+    throw std::invalid_argument(
+        "the coarse continuum baseline needs a doubly periodic box of one phase without walls "
+        "or solids; scene '" +
+        scene.name + "' is not one");
   Eigen::VectorXd fx, fy;
-  sampled_body_force(scene, mesh, fx, fy);
+  if (average_force)
+    averaged_body_force(scene, *average_force, mesh, fx, fy);
+  else
+    sampled_body_force(scene, mesh, fx, fy);
   return std::make_unique<CoarseNavierStokes2D>(mesh, scene.rho0, scene.phase_viscosity[0], std::move(fx),
                                                 std::move(fy), options);
 }

@@ -35,6 +35,7 @@
 namespace closurelab {
 
 struct Scene;
+class AveragingKernel;
 
 struct CoarseNavierStokes2DOptions {
   double cfl = 0.5;               // Δt ≤ cfl · h_min / max|v| (central convection with AB2: keep it ≤ 0.5)
@@ -97,9 +98,15 @@ class CoarseNavierStokes2D {
 
 // The scene's body force per unit mass sampled at the nodes (body_force, else force_x(y) along x; zero if neither).
 void sampled_body_force(const Scene& scene, const TensorMesh2D& mesh, Eigen::VectorXd& fx, Eigen::VectorXd& fy);
-// The baseline for a scene on a given mesh: ρ0, the one phase's viscosity and the sampled body force.
+// The averaged body force F̄ = (2.14) / (2.8) at the nodes: the velocity average (2.9) of the lattice's particles
+// carrying F(q) as their velocity, as the 2D reduced model forms it (MesoSolver2D::averaged_force_x).
+void averaged_body_force(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& mesh,
+                         Eigen::VectorXd& fx, Eigen::VectorXd& fy);
+// The baseline for a scene on a given mesh: ρ0, the one phase's viscosity and the body force, averaged with
+// `average_force` where given (the coarse data the reduced model is driven by), else sampled at the nodes.
 // std::invalid_argument for a scene the baseline cannot serve (walls, solids, several phases, not doubly periodic).
 std::unique_ptr<CoarseNavierStokes2D> coarse_navier_stokes_for(const Scene& scene, const TensorMesh2D& mesh,
-                                                               CoarseNavierStokes2DOptions options = {});
+                                                               CoarseNavierStokes2DOptions options = {},
+                                                               const AveragingKernel* average_force = nullptr);
 
 }  // namespace closurelab

@@ -152,6 +152,37 @@ TEST(CoarseNavierStokes2D, ForcedCellularSceneSettlesOnTheDiscreteAmplitude) {
   EXPECT_LT(max_abs(ns->divergence()), 1e-12 * k * a);
 }
 
+TEST(CoarseNavierStokes2D, AveragedForceDrivesTheAveragedSteadyAmplitude) {
+  // Driven by F̄ (the reduced model's averaged force) the baseline settles on the mode with amplitude c/(ν|λ_h|),
+  // c the averaged force's amplitude on the mode: on the lattice sum c/g is the kernel's symbol e at (k, k) up to
+  // the lattice quadrature and the kernel's truncation; at steady state the baseline is e A · 2k²/|λ_h|.
+  const Registry& reg = builtin_registry();
+  const auto scene = reg.scenes.create(json{{"name", "cellular"}, {"n", 48}, {"re", 1.0}}, "/scene");
+  const auto kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", scene->eta}}, "/kernel");
+  const TensorMesh2D mesh = coarse_mesh_2d(*scene, *kernel, 1.0);
+  auto ns = coarse_navier_stokes_for(*scene, mesh, {}, kernel.get());
+  Eigen::VectorXd fx, fy;
+  averaged_body_force(*scene, *kernel, mesh, fx, fy);
+  const Scene::CellularMode& mode = *scene->cellular_mode;
+  const double k = mode.wavenumber, nu = scene->phase_viscosity[0] / scene->rho0;
+  const double g = 2.0 * k * k * nu * mode.steady_amplitude, e = kernel->symbol(Vec2(k, k) / (2.0 * M_PI));
+  Eigen::VectorXd mx(mesh.size()), my(mesh.size());
+  for (int i = 0; i < mesh.size(); ++i) {
+    const Vec2 m = cellular_mode(mesh.node(i).x(), mesh.node(i).y(), k);
+    mx[i] = m.x();
+    my[i] = m.y();
+  }
+  const double c = (fx.dot(mx) + fy.dot(my)) / (mx.squaredNorm() + my.squaredNorm());
+  EXPECT_LT(std::max(max_abs(fx - c * mx), max_abs(fy - c * my)), 1e-12 * g);  // on the mode
+  std::printf("averaged force on the mode: c/g = %.8f, e = %.8f\n", c / g, e);
+  EXPECT_NEAR(c / g, e,
+              1e-6 * e);  // measured: equal to 8 digits (the lattice sum of a Gaussian is spectrally accurate)
+  ns->set_velocity(Eigen::VectorXd::Zero(mesh.size()), Eigen::VectorXd::Zero(mesh.size()));
+  ASSERT_TRUE(ns->advance_to(40.0 / mode.decay_rate));
+  const double a = c / (nu * -ns->laplacian_eigenvalue(k, k));
+  EXPECT_LT(std::max(max_abs(ns->vx() - a * mx), max_abs(ns->vy() - a * my)), 1e-11 * a);
+}
+
 TEST(CoarseNavierStokes2D, RefusesScenesAndMeshesItCannotServe) {
   const Registry& reg = builtin_registry();
   const auto channel = reg.scenes.create(json{{"name", "poiseuille-uniform"}}, "/scene");

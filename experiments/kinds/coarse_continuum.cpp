@@ -35,13 +35,18 @@ struct Field {
 // The scene's mode at unit amplitude at the nodes: the Taylor–Green vortex (−cos kx sin ky, sin kx cos ky) or the
 // cellular mode (sin kx cos ky, −cos kx sin ky); the exact velocity at time t is amplitude(t) times it.
 Field mode_shape(const Scene& s, const TensorMesh2D& mesh) {
-  const double k = s.taylor_green ? s.taylor_green->wavenumber : s.cellular_mode->wavenumber;
-  const double sign = s.taylor_green ? -1.0 : 1.0;
   Field f{Eigen::VectorXd(mesh.size()), Eigen::VectorXd(mesh.size())};
   for (int n = 0; n < mesh.size(); ++n) {
     const Vec2 q = mesh.node(n);
-    f.x[n] = sign * std::sin(k * q.x()) * std::cos(k * q.y());
-    f.y[n] = -sign * std::cos(k * q.x()) * std::sin(k * q.y());
+    if (s.taylor_green) {
+      const double k = s.taylor_green->wavenumber;
+      f.x[n] = -std::cos(k * q.x()) * std::sin(k * q.y());
+      f.y[n] = std::sin(k * q.x()) * std::cos(k * q.y());
+    } else {
+      const double k = s.cellular_mode->wavenumber;
+      f.x[n] = std::sin(k * q.x()) * std::cos(k * q.y());
+      f.y[n] = -std::cos(k * q.x()) * std::sin(k * q.y());
+    }
   }
   return f;
 }

@@ -19,8 +19,9 @@
 //    explicit diffusion limit (AB2 is stable on the negative real axis down to Δt λ = −1, and the 5-point
 //    Laplacian's largest |λ| is ν (4/h_x² + 4/h_y²) ≤ 8ν/h_min², so viscous_number ≤ 1/8).
 // Known property of the collocated grid: the modes at the Nyquist wavenumber (θ = π along an axis) have d = 0 along
-// that axis, so the pressure does not see them (odd–even decoupling); smooth data do not excite them at first
-// order, and the scenes here (Taylor–Green, cellular, Kolmogorov) are single low modes.
+// that axis, so the pressure does not see them (odd–even decoupling). The scenes here are single low modes whose
+// convective term lives at twice their wavenumber (the Nyquist mode only at 4 nodes per wavelength), so nothing
+// feeds them.
 // Exact discrete properties (tests/numerical/test_coarse_navier_stokes_2d.cpp): the sampled Taylor–Green field is
 // discretely divergence-free, its central convective term is a discrete gradient (removed by the projection to
 // round-off), so the scheme keeps its shape and its amplitude follows AB2 applied to ν λ_h, λ_h the 5-point

@@ -1,4 +1,5 @@
 #include "core/base/registry.hpp"
+#include "experiments/kinds/coarse_continuum.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/kinds/quadrature_convergence.hpp"
 #include "experiments/kinds/reduced_model.hpp"
@@ -18,6 +19,7 @@ void register_builtin_experiments(Registry& r) {
   r.experiments.add(make_reduced_model_2d_experiment());
   r.experiments.add(make_reduced_model_force_density_2d_experiment());
   r.experiments.add(make_snapshot_closure_experiment());
+  r.experiments.add(make_coarse_continuum_2d_experiment());  // the coarse continuum baseline (issue 43)
 }
 
 const Registry& builtin_registry() {

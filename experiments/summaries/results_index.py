@@ -26,6 +26,8 @@ QUESTIONS = {
     "speed_vs_error/kolmogorov": "Which closure is fastest for its error (wall-free kolmogorov flow)?",
     "cellular/direct": "Does the direct SPH of the cellular flow reach the exact steady amplitude g/(2k^2 nu), and at what order?",
     "cellular/reduced": "Does the two-dimensional reduced model of the cellular flow reach the averaged direct SPH, and how much faster is it as eta'/eps' grows?",
+    "cellular/coarse_continuum": "How close does the coarse continuum Navier-Stokes baseline on the reduced model's mesh come to the averaged direct SPH of the cellular flow (issue 43)?",
+    "taylor_green/coarse_continuum_re100": "How close does the coarse continuum Navier-Stokes baseline come to the averaged exact and direct Taylor-Green vortex at Re = 100 (issue 43)?",
     "speed_vs_error/cellular": "Which closure is fastest for its error in two dimensions (cellular flow)?",
     "two_phase/direct": "Does the direct SPH of the layered two-phase flow reach the analytic piecewise parabolas?",
     "two_phase/two_phase": "Section 7: how close is the reduced model of the two-phase flow to the direct SPH?",
@@ -72,7 +74,7 @@ def best_reduced(rows):
 
 def headline(t):
     rows, kind = t["rows"], t["kind"]
-    if kind in ("reduced_model", "reduced_model_2d"):
+    if kind in ("reduced_model", "reduced_model_2d", "coarse_continuum_2d"):
         return best_reduced(rows)
     if kind == "direct_sph_validation":
         e = [get(r, "errors", "particles_vs_analytic", "all", "max_rel") for r in rows]

@@ -31,6 +31,7 @@ Views (the summarize_*.py files beside this one, kept importable and runnable on
   reduced_model_2d_force_density                   summarize_force_density_2d  table -> summary.md, summary_fields.png
   direct_sph_validation  cylinder scenes           ../cylinders/table       table  -> summary.md (permeability)
   snapshot_closure                                 summarize_snapshot_closure  table -> summary.md, summary.png
+  coarse_continuum_2d                              summarize_coarse_continuum  table -> summary.md
 A table whose spec sweeps a scalar key (`axes`) also gets OUT_DIR/summary_sweep.png (SUMMARY_sweep.png): the error
 against each swept key, one line per cell (sweep_figure.py); not with --view or --no-figures.
 Every number is read from the tables. Errors are printed in % (relative differences with their sign) by every view;
@@ -82,9 +83,11 @@ def view_of(table):
         return "summarize_force_density_2d", "prefix", "summary"
     if kind == "snapshot_closure":
         return "summarize_snapshot_closure", "prefix", "summary"
+    if kind == "coarse_continuum_2d":
+        return "summarize_coarse_continuum", "prefix", "summary"
     raise SystemExit(f"summarize: table kind '{kind}' has no view; known kinds: deconvolution_stability, "
                      "quadrature_convergence, direct_sph_validation, reduced_model, reduced_model_2d, "
-                     "reduced_model_2d_force_density, snapshot_closure")
+                     "reduced_model_2d_force_density, snapshot_closure, coarse_continuum_2d")
 
 
 def reduced_model_of(rows):

@@ -78,6 +78,16 @@ const std::map<std::string, TinyCell>& tiny_cells() {
          "/errors/permeability/reduced_vs_reference", "/cost/speed_up", "/cost/free_nodes",
          "/cost/reduced_timing/median_seconds", "/fields/direct_average/", "/fields/reduced/", "/direct_sph/",
          "/reduced_model/"}}},
+      {"coarse_continuum_2d",  // the reduced_model_2d cell's scene and reference, the baseline on the same mesh
+       {R"({"scene": {"name": "cellular", "n": 32, "eta_over_l": 0.125},
+            "solver": {"target_time": 0.01},
+            "reference": {"direct_sph": true, "solver": {"mode": "target_time", "target_time": 0.01}},
+            "transient": {"t_over_tau": [0.1, 0.3]}})",
+        {"/errors/vs_analytic/all_nodes/max_rel", "/errors/vs_averaged_analytic/fluid_nodes/max_rel",
+         "/errors/vs_averaged_direct_sph/all_nodes/max_rel", "/errors/direct_sph_vs_averaged_analytic/fluid_nodes/max_rel",
+         "/errors/amplitude/ratio", "/transient/1/amplitude/baseline", "/cost/steps", "/cost/speed_up",
+         "/cost/final_max_divergence", "/cost/reduced_timing/median_seconds", "/fields/direct_average/",
+         "/direct_sph/", "/baseline/"}}},
       {"snapshot_closure",  // the file is written by write_inputs() (its path set in the test): the channel's lattice at the analytic flow
        {R"({"scene": {"name": "poiseuille-uniform", "n_y": 32}, "snapshot": {"file": "snapshot.csv"},
             "closure": {"deconvolver": {"name": "landweber", "order": 1}}})",

@@ -42,6 +42,9 @@ CASES = [
      ["profiles.md"], ["profiles.md"], []),
     # reduced_model_2d (the 2D mesh model of the cellular flow)
     (["results/cellular/reduced/reduced.json"], [], ["summary.md", "summary_fields.png"], ["summary.md"], []),
+    # coarse_continuum_2d (the coarse continuum Navier-Stokes baseline): the Markdown, and the sweep over n and the force
+    (["results/cellular/coarse_continuum/coarse_continuum.json"], [], ["summary.md", "summary_sweep.png"],
+     ["summary.md"], ["vs averaged direct SPH", " %"]),
     # reduced_model_2d_force_density: the cylinder lattice (with its permeability), walls as one column, the
     # cylinder between walls
     (["results/cylinders/reduced/reduced.json"], [], ["summary.md", "summary_fields.png"], ["summary.md"],

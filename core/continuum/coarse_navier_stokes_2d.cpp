@@ -4,56 +4,13 @@
 #include <cmath>
 #include <complex>
 #include <stdexcept>
-#include <unsupported/Eigen/FFT>
 #include <vector>
 
 #include "core/averaging/averaging.hpp"
+#include "core/continuum/periodic_projection_2d.hpp"
 #include "core/sph/scene.hpp"
 
 namespace closurelab {
-
-using Complex = std::complex<double>;
-
-// The 2D discrete Fourier transform of a field on the mesh (flat j · nx + i) by 1D transforms along x, then y.
-struct CoarseNavierStokes2D::Fft {
-  int nx, ny;
-  Eigen::FFT<double> fft;
-  std::vector<Complex> in_x, out_x, in_y, out_y;
-
-  Fft(int nx_, int ny_) : nx(nx_), ny(ny_), in_x(nx_), out_x(nx_), in_y(ny_), out_y(ny_) {}
-
-  void forward(const Eigen::VectorXd& f, std::vector<Complex>& hat) {
-    hat.resize(static_cast<size_t>(nx) * ny);
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) in_x[i] = f[j * nx + i];
-      fft.fwd(out_x, in_x);
-      for (int i = 0; i < nx; ++i) hat[j * nx + i] = out_x[i];
-    }
-    for (int i = 0; i < nx; ++i) {
-      for (int j = 0; j < ny; ++j) in_y[j] = hat[j * nx + i];
-      fft.fwd(out_y, in_y);
-      for (int j = 0; j < ny; ++j) hat[j * nx + i] = out_y[j];
-    }
-  }
-
-  // The real part of the inverse transform (scaled: inverse(forward(f)) = f).
-  void inverse(std::vector<Complex>& hat, Eigen::VectorXd& f) {
-    for (int i = 0; i < nx; ++i) {
-      for (int j = 0; j < ny; ++j) in_y[j] = hat[j * nx + i];
-      fft.inv(out_y, in_y);
-      for (int j = 0; j < ny; ++j) hat[j * nx + i] = out_y[j];
-    }
-    f.resize(static_cast<Eigen::Index>(nx) * ny);
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) in_x[i] = hat[j * nx + i];
-      fft.inv(out_x, in_x);
-      for (int i = 0; i < nx; ++i) f[j * nx + i] = out_x[i].real();
-    }
-  }
-
-  std::vector<Complex> hx, hy;  // work arrays of project()
-  std::vector<double> dx, dy;   // sin θ / h per wavenumber index: the central difference's symbol over i
-};
 
 namespace {
 
@@ -79,41 +36,20 @@ CoarseNavierStokes2D::CoarseNavierStokes2D(TensorMesh2D mesh, double density, do
   fy_ = force_y.size() == 0 ? Eigen::VectorXd::Zero(n) : std::move(force_y);
   if (fx_.size() != n || fy_.size() != n)
     throw std::invalid_argument("coarse Navier-Stokes: the force must have one value per node");
-  fft_ = std::make_unique<Fft>(mesh_.nx(), mesh_.ny());
-  fft_->dx.resize(mesh_.nx());
-  fft_->dy.resize(mesh_.ny());
-  for (int m = 0; m < mesh_.nx(); ++m) fft_->dx[m] = std::sin(2.0 * M_PI * m / mesh_.nx()) / mesh_.x.spacing;
-  for (int m = 0; m < mesh_.ny(); ++m) fft_->dy[m] = std::sin(2.0 * M_PI * m / mesh_.ny()) / mesh_.y.spacing;
-  // Central-difference modes at the Nyquist index have sin θ = 0 exactly in exact arithmetic; make it so.
-  if (mesh_.nx() % 2 == 0) fft_->dx[mesh_.nx() / 2] = 0.0;
-  if (mesh_.ny() % 2 == 0) fft_->dy[mesh_.ny() / 2] = 0.0;
-  fft_->dx[0] = fft_->dy[0] = 0.0;
+  projection_ = std::make_unique<PeriodicProjection2D>(
+      PeriodicProjection2D::central_symbol(mesh_.nx(), mesh_.x.spacing),
+      PeriodicProjection2D::central_symbol(mesh_.ny(), mesh_.y.spacing));
   vx_ = vy_ = p_ = Eigen::VectorXd::Zero(n);
 }
 
 CoarseNavierStokes2D::~CoarseNavierStokes2D() = default;
 
 void CoarseNavierStokes2D::project(Eigen::VectorXd& vx, Eigen::VectorXd& vy, double dt) {
-  Fft& f = *fft_;
-  f.forward(vx, f.hx);
-  f.forward(vy, f.hy);
-  std::vector<Complex> phi(f.hx.size(), Complex(0.0, 0.0));
-  const int nx = mesh_.nx(), ny = mesh_.ny();
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const double dx = f.dx[i], dy = f.dy[j], d2 = dx * dx + dy * dy;
-      if (d2 == 0.0) continue;  // the mean and the Nyquist modes: no central divergence to remove
-      const size_t k = static_cast<size_t>(j) * nx + i;
-      const Complex s = (dx * f.hx[k] + dy * f.hy[k]) / d2;
-      f.hx[k] -= dx * s;
-      f.hy[k] -= dy * s;
-      if (dt > 0.0) phi[k] = Complex(0.0, -1.0) * s / dt;
-    }
-  f.inverse(f.hx, vx);
-  f.inverse(f.hy, vy);
-  if (dt > 0.0) {
-    f.inverse(phi, p_);
-    p_ *= rho_;
+  if (dt > 0.0) {  // the pressure ρ φ / Δt of the removed gradient
+    projection_->project(vx, vy, &p_);
+    p_ *= rho_ / dt;
+  } else {
+    projection_->project(vx, vy);
   }
 }
 

@@ -37,6 +37,7 @@ namespace closurelab {
 
 struct Scene;
 class AveragingKernel;
+class PeriodicProjection2D;
 
 struct CoarseNavierStokes2DOptions {
   double cfl = 0.5;               // Δt ≤ cfl · h_min / max|v| (central convection with AB2: keep it ≤ 0.5)
@@ -83,14 +84,13 @@ class CoarseNavierStokes2D {
   double laplacian_eigenvalue(double kx, double ky) const;
 
  private:
-  struct Fft;
   void project(Eigen::VectorXd& vx, Eigen::VectorXd& vy, double dt);
 
   TensorMesh2D mesh_;
   double rho_, nu_;
   Eigen::VectorXd fx_, fy_;
   CoarseNavierStokes2DOptions opt_;
-  std::unique_ptr<Fft> fft_;
+  std::unique_ptr<PeriodicProjection2D> projection_;
   Eigen::VectorXd vx_, vy_, p_, rx_prev_, ry_prev_;
   double dt_prev_ = 0.0;  // 0: no history (the next step is forward Euler)
   double time_ = 0.0;

@@ -23,10 +23,12 @@ ParamSchema meso_solver_2d_schema() {
       string_param("equations", name_of(d.equations),
                    "momentum: the linear model (density and pressure the lattice's, no convective stress); "
                    "mass_momentum: the averaged balances (2.10)-(2.11) in (rho, rho v), with the convective flux of "
-                   "the closure's velocities (2.12) and the pressure of the coarse density (core/reduced/meso_solver_2d.hpp)",
+                   "the closure's velocities (2.12) and the pressure of the coarse density; incompressible: the convective flux and "
+                   "the pressure as the multiplier of a discrete projection (core/reduced/meso_solver_2d.hpp)",
                    names_of<CoarseEquations>()),
       bool_param("transport", d.transport,
-                 "mass_momentum: the mass flux (2.10) and the convective flux (2.11)-(2.12) (false: rho fixed)"),
+                 "mass_momentum: the mass flux (2.10) and the convective flux (2.11)-(2.12) (false: rho fixed); "
+                 "incompressible: the convective flux"),
       bool_param("coarse_pressure", d.coarse_pressure,
                  "mass_momentum: the pressure of the coarse density, -c_lat P(rho) I (false: the lattice's P*)"),
       string_param("time_integration", "explicit",
@@ -107,6 +109,19 @@ Eigen::VectorXd to_faces(const TensorMesh2D& cells, const Eigen::VectorXd& c, in
   return out;
 }
 
+std::vector<double> divergence_symbol(int n, double h, int order) {
+  if (order == 2) return PeriodicProjection2D::central_symbol(n, h);
+  std::vector<double> s(static_cast<std::size_t>(n));
+  for (int m = 0; m < n; ++m) {
+    const double th = 2.0 * M_PI * m / n;
+    const double interpolation = (9.0 * std::cos(0.5 * th) - std::cos(1.5 * th)) / 8.0;
+    s[m] = interpolation * (27.0 * std::sin(0.5 * th) - std::sin(1.5 * th)) / (12.0 * h);
+  }
+  s[0] = 0.0;
+  if (n % 2 == 0) s[n / 2] = 0.0;  // the interpolation's symbol vanishes there
+  return s;
+}
+
 double lattice_pressure_factor(const Scene& scene) {
   const SmoothingKernel w = scene.smoothing_kernel();
   const int reach = static_cast<int>(std::ceil(w.support() / scene.dx)) + 1;
@@ -148,10 +163,12 @@ void check_meso_solver_2d(const Scene& scene, const AveragingKernel& kernel, con
 
 void check_meso_run_2d(const Scene& scene, const AveragingKernel& kernel, const json& solver,
                        const MesoSolver2DOptions& o, const std::string& path) {
-  if (o.equations == CoarseEquations::mass_momentum && o.discretization == Discretization::fine_fine)
-    throw ConfigError(path + "/equations", "mass_momentum averages the closure's velocity products with the forward "
-                                           "operator onto the coarse nodes; the fine_fine operator maps to the lattice "
-                                           "(use closure.discretization coarse_coarse or coarse_fine)");
+  const bool convective = o.equations == CoarseEquations::mass_momentum ||
+                          (o.equations == CoarseEquations::incompressible && o.transport);
+  if (convective && o.discretization == Discretization::fine_fine)
+    throw ConfigError(path + "/equations", name_of(o.equations) + " averages the closure's velocity products with the "
+                                           "forward operator onto the coarse nodes; the fine_fine operator maps to the "
+                                           "lattice (use closure.discretization coarse_coarse or coarse_fine)");
   if (o.equations == CoarseEquations::mass_momentum && scene.van_der_waals)
     throw ConfigError(path + "/equations", "mass_momentum takes the weakly compressible equation of state; scene '" +
                                                scene.name + "' has the van der Waals one");
@@ -199,6 +216,9 @@ MesoSolver2D::MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, De
   const MesoFields f = average_particles(lattice, scene.box, kernel, coarse_, AveragingRequest{});
   rho_bar_ = f.rho;
   lattice_pressure_factor_ = lattice_pressure_factor(scene);
+  if (opt_.equations == CoarseEquations::incompressible)
+    projection_ = std::make_unique<PeriodicProjection2D>(divergence_symbol(coarse_.nx(), coarse_.x.spacing, opt_.divergence_order),
+                                                         divergence_symbol(coarse_.ny(), coarse_.y.spacing, opt_.divergence_order));
   particle_mass_ = scene.particle_mass();
   fx_ = f.vx;
   fy_ = f.vy;
@@ -209,6 +229,7 @@ void MesoSolver2D::set_velocity(const Eigen::VectorXd& vx, const Eigen::VectorXd
   if (vx.size() != vx_.size() || vy.size() != vy_.size()) throw ConfigError("", "velocity has the wrong size");
   vx_ = vx;
   vy_ = vy;
+  if (projection_) projection_->project(vx_, vy_);
 }
 
 bool MesoSolver2D::deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std::string& issue) {
@@ -270,6 +291,39 @@ bool MesoSolver2D::rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& i
   return true;
 }
 
+void MesoSolver2D::convective_flux(const FaceStress& t, Eigen::VectorXd& fxx, Eigen::VectorXd& fxy,
+                                   Eigen::VectorXd& fyy) const {
+  // Φ = ρ̄ [A(V⊗V) − v̄⊗A(V) − A(V)⊗v̄ + 2 v̄⊗v̄] at the centres (ρ̄v̄⊗v̄ − T_c of (2.12), V the closure's velocities).
+  const Eigen::VectorXd wx = op_.apply(t.rx), wy = op_.apply(t.ry);
+  const auto flux = [&](const Eigen::VectorXd& ra, const Eigen::VectorXd& rb, const Eigen::VectorXd& va,
+                        const Eigen::VectorXd& vb, const Eigen::VectorXd& wa, const Eigen::VectorXd& wb) {
+    const Eigen::VectorXd q = op_.apply(ra.cwiseProduct(rb));
+    return Eigen::VectorXd(rho_bar_.array() *
+                           (q.array() - va.array() * wb.array() - wa.array() * vb.array() + 2.0 * va.array() * vb.array()));
+  };
+  fxx = flux(t.rx, t.rx, vx_, vx_, wx, wx);
+  fxy = flux(t.rx, t.ry, vx_, vy_, wx, wy);
+  fyy = flux(t.ry, t.ry, vy_, vy_, wy, wy);
+}
+
+bool MesoSolver2D::incompressible_rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue) {
+  FaceStress t;
+  if (!interaction_stress(t, issue)) return false;
+  const int o = opt_.divergence_order;
+  if (opt_.transport) {
+    Eigen::VectorXd fxx, fxy, fyy;
+    convective_flux(t, fxx, fxy, fyy);
+    t.txx -= to_faces(coarse_, fxx, 0, o);
+    t.tyx -= to_faces(coarse_, fxy, 0, o);
+    t.txy -= to_faces(coarse_, fxy, 1, o);
+    t.tyy -= to_faces(coarse_, fyy, 1, o);
+  }
+  ax = (face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o)).cwiseQuotient(rho_bar_) + fx_;
+  ay = (face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o)).cwiseQuotient(rho_bar_) + fy_;
+  projection_->project(ax, ay);
+  return true;
+}
+
 bool MesoSolver2D::conservative_rate(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue) {
   const Eigen::Index n = vx_.size();
   const Eigen::VectorXd mx = u.segment(0, n), my = u.segment(n, n);
@@ -286,16 +340,8 @@ bool MesoSolver2D::conservative_rate(const Eigen::VectorXd& u, Eigen::VectorXd& 
   const auto faces = [&](const Eigen::VectorXd& c, int axis) { return to_faces(coarse_, c, axis, o); };
   Eigen::VectorXd drho = Eigen::VectorXd::Zero(n);
   if (opt_.transport) {
-    // Φ = ρ̄ [A(V⊗V) − v̄⊗A(V) − A(V)⊗v̄ + 2 v̄⊗v̄] at the centres (ρ̄v̄⊗v̄ − T_c of (2.12), V the closure's velocities).
-    const Eigen::VectorXd wx = op_.apply(t.rx), wy = op_.apply(t.ry);
-    const auto flux = [&](const Eigen::VectorXd& ra, const Eigen::VectorXd& rb, const Eigen::VectorXd& va,
-                          const Eigen::VectorXd& vb, const Eigen::VectorXd& wa, const Eigen::VectorXd& wb) {
-      const Eigen::VectorXd q = op_.apply(ra.cwiseProduct(rb));
-      return Eigen::VectorXd(rho_bar_.array() * (q.array() - va.array() * wb.array() - wa.array() * vb.array() +
-                                                 2.0 * va.array() * vb.array()));
-    };
-    const Eigen::VectorXd fxx = flux(t.rx, t.rx, vx_, vx_, wx, wx), fxy = flux(t.rx, t.ry, vx_, vy_, wx, wy),
-                          fyy = flux(t.ry, t.ry, vy_, vy_, wy, wy);
+    Eigen::VectorXd fxx, fxy, fyy;
+    convective_flux(t, fxx, fxy, fyy);
     t.txx -= faces(fxx, 0);
     t.tyx -= faces(fxy, 0);
     t.txy -= faces(fxy, 1);
@@ -333,11 +379,12 @@ bool MesoSolver2D::step(double dt, std::string& issue) {
     return ok;
   }
   // The state u = (v̄_x, v̄_y), its rate (∂_t v̄_x, ∂_t v̄_y); no node is held (doubly periodic).
+  const bool incompressible = opt_.equations == CoarseEquations::incompressible;
   const CoarseRate f{[&](const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& why) {
     vx_ = u.head(n);
     vy_ = u.tail(n);
     Eigen::VectorXd ax, ay;
-    if (!rate(ax, ay, why)) return false;
+    if (!(incompressible ? incompressible_rate(ax, ay, why) : rate(ax, ay, why))) return false;
     dudt.resize(2 * n);
     dudt << ax, ay;
     return true;

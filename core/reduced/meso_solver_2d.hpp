@@ -32,6 +32,12 @@
 //                  The time step adds the sound speed to the largest speed in (5.21); `transport` and
 //                  `coarse_pressure` switch the two nonlinear parts off (both off: the momentum balance in
 //                  conservative form, equal to `momentum` to round-off, tested).
+//   incompressible the flow assumed incompressible, as the paper's §5.2 assumes it (positions intact, ρ̄ the
+//                  lattice's): ∂_t v̄ = Π[div(T_int − Φ)/ρ̄ + F̄], Φ as above (`transport`), the pressure a Lagrange
+//                  multiplier: Π the discrete Leray projection (core/continuum/periodic_projection_2d.hpp) for the
+//                  model's own divergence (face interpolation then face difference, of divergence_order), so the
+//                  discrete divergence of v̄ stays where set_velocity put it (projected there). No sound speed in
+//                  the time step: (5.21)–(5.22) with the largest speed.
 #include <Eigen/Core>
 #include <array>
 #include <functional>
@@ -45,18 +51,21 @@
 #include "core/closure/deconvolver.hpp"
 #include "core/closure/forward_operator.hpp"
 #include "core/closure/stress_quadrature.hpp"
+#include "core/continuum/periodic_projection_2d.hpp"
 #include "core/reduced/meso_solver.hpp"
 #include "core/sph/scene.hpp"
 
 namespace closurelab {
 
 // solver.equations (above).
-enum class CoarseEquations { momentum, mass_momentum };
+enum class CoarseEquations { momentum, mass_momentum, incompressible };
 
 template <>
 struct EnumNames<CoarseEquations> {
-  static constexpr std::array<std::pair<CoarseEquations, std::string_view>, 2> table{
-      {{CoarseEquations::momentum, "momentum"}, {CoarseEquations::mass_momentum, "mass_momentum"}}};
+  static constexpr std::array<std::pair<CoarseEquations, std::string_view>, 3> table{
+      {{CoarseEquations::momentum, "momentum"},
+       {CoarseEquations::mass_momentum, "mass_momentum"},
+       {CoarseEquations::incompressible, "incompressible"}}};
 };
 
 struct MesoSolver2DOptions : TimeLoopOptions {
@@ -95,6 +104,10 @@ double lattice_pressure_factor(const Scene& scene);
 // The centre values of a periodic field interpolated to the faces of `axis` (face i: the left or lower face of
 // cell i) at order 2 ((c_{i−1} + c_i)/2) or 4 ((−c_{i−2} + 9 c_{i−1} + 9 c_i − c_{i+1})/16).
 Eigen::VectorXd to_faces(const TensorMesh2D& cells, const Eigen::VectorXd& at_centres, int axis, int order);
+// σ(θ_m), θ_m = 2π m / n: the imaginary part of the symbol of face_difference ∘ to_faces along one axis of n cells of
+// spacing h (order 2: sin θ / h; order 4: [(9 cos(θ/2) − cos(3θ/2))/8] (27 sin(θ/2) − sin(3θ/2)) / (12 h)), zero at
+// the mean and the Nyquist mode: the divergence the incompressible equations' projection removes.
+std::vector<double> divergence_symbol(int n, double h, int order);
 
 // The solver section of a 2D spec: schema (defaults from MesoSolver2DOptions{}) and reader.
 ParamSchema meso_solver_2d_schema();
@@ -129,7 +142,8 @@ class MesoSolver2D {
   MesoResult2D run();
   bool step(double dt, std::string& issue);  // false on a numerical issue (message in `issue`)
   double time_step() const;
-  // Sets v̄ (e.g. the average of an initial velocity); sizes must match the coarse mesh.
+  // Sets v̄ (e.g. the average of an initial velocity; under incompressible, its projection); sizes must match the
+  // coarse mesh.
   void set_velocity(const Eigen::VectorXd& vx, const Eigen::VectorXd& vy);
   // ∂_t v̄ at the current v̄ (both components), for diagnostics and tests.
   bool rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue);
@@ -150,6 +164,10 @@ class MesoSolver2D {
     Eigen::VectorXd rx, ry, txx, tyx, txy, tyy;
   };
   bool interaction_stress(FaceStress& s, std::string& issue);
+  // The convective flux Φ at the centres (xx, xy, yy) from the closure's velocities in `t` and the current v̄, ρ̄.
+  void convective_flux(const FaceStress& t, Eigen::VectorXd& fxx, Eigen::VectorXd& fxy, Eigen::VectorXd& fyy) const;
+  // The rate of v̄ under incompressible.
+  bool incompressible_rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue);
   // The rate of u = (ρ̄v̄_x, ρ̄v̄_y, ρ̄) under mass_momentum.
   bool conservative_rate(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue);
 
@@ -162,6 +180,7 @@ class MesoSolver2D {
   ForwardOperator op_;
   Eigen::VectorXd vx_, vy_, rho_bar_, fx_, fy_;
   double lattice_pressure_factor_ = 1.0, particle_mass_ = 1.0;
+  std::unique_ptr<PeriodicProjection2D> projection_;  // incompressible only
   long matvecs_ = 0;
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
   QuadratureCost quad_cost_;  // both quadratures' setup and calls

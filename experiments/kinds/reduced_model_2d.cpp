@@ -92,11 +92,15 @@ class ReducedModel2D : public ExperimentKind {
     {  // the integrator: registered, and able to serve the closure and the equations
       const auto integrator = make_integrator(reg, out["solver"], path);
       check_implicit_closure(out["solver"], *integrator, out["closure"]["deconvolver"], path);
-      if (integrator->needs_affine_rate() && out["solver"].at("equations") == "mass_momentum")
+      const json& s = out["solver"];
+      const std::string equations = s.at("equations").get<std::string>();
+      if (integrator->needs_affine_rate() &&
+          (equations == "mass_momentum" || (equations == "incompressible" && s.at("transport").get<bool>())))
         throw ConfigError(path + "/solver/time_integration",
-                          out["solver"].at("time_integration").get<std::string>() +
-                              " needs a rate affine in the coarse state; mass_momentum's is not (convective flux, "
-                              "pressure of the density, v = (rho v) / rho): use an explicit integrator");
+                          s.at("time_integration").get<std::string>() + " needs a rate affine in the coarse state; " +
+                              equations + "'s is not (the convective flux" +
+                              (equations == "mass_momentum" ? ", the pressure of the density, v = (rho v) / rho" : "") +
+                              "): use an explicit integrator");
     }
     out["reference"] = resolve_section(cell, "reference", reference_schema(), path);
     out["reference"]["solver"] =

@@ -28,6 +28,7 @@ QUESTIONS = {
     "cellular/reduced": "Does the two-dimensional reduced model of the cellular flow reach the averaged direct SPH, and how much faster is it as eta'/eps' grows?",
     "cellular/coarse_continuum": "How close does the coarse continuum Navier-Stokes baseline on the reduced model's mesh come to the averaged direct SPH of the cellular flow (issue 43)?",
     "taylor_green/coarse_continuum_re100": "How close does the coarse continuum Navier-Stokes baseline come to the averaged exact and direct Taylor-Green vortex at Re = 100 (issue 43)?",
+    "taylor_green/reduced_2d_re100": "How close does the 2D reduced model stepped in time, linear and nonlinear (incompressible, convective flux of the closure), come to the averaged direct Taylor-Green vortex at Re = 100 over the transient, and at what cost (issue 43)?",
     "speed_vs_error/cellular": "Which closure is fastest for its error in two dimensions (cellular flow)?",
     "two_phase/direct": "Does the direct SPH of the layered two-phase flow reach the analytic piecewise parabolas?",
     "two_phase/two_phase": "Section 7: how close is the reduced model of the two-phase flow to the direct SPH?",

@@ -171,7 +171,7 @@ void sampled_body_force(const Scene& scene, const TensorMesh2D& mesh, Eigen::Vec
 }
 
 void averaged_body_force(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& mesh,
-                         Eigen::VectorXd& fx, Eigen::VectorXd& fy) {
+                         Eigen::VectorXd& fx, Eigen::VectorXd& fy, Eigen::VectorXd* density) {
   ParticleSystem lattice = scene.make_particles();
   for (std::size_t a = 0; a < lattice.size(); ++a) {
     const Vec2 f = scene.body_force ? scene.body_force(lattice.x[a], lattice.y[a])
@@ -182,6 +182,7 @@ void averaged_body_force(const Scene& scene, const AveragingKernel& kernel, cons
   const MesoFields f = average_particles(lattice, scene.box, kernel, mesh, AveragingRequest{});
   fx = f.vx;
   fy = f.vy;
+  if (density) *density = f.rho;
 }
 
 std::unique_ptr<CoarseNavierStokes2D> coarse_navier_stokes_for(const Scene& scene, const TensorMesh2D& mesh,

@@ -101,8 +101,9 @@ class CoarseNavierStokes2D {
 void sampled_body_force(const Scene& scene, const TensorMesh2D& mesh, Eigen::VectorXd& fx, Eigen::VectorXd& fy);
 // The averaged body force F̄ = (2.14) / (2.8) at the nodes: the velocity average (2.9) of the lattice's particles
 // carrying F(q) as their velocity, as the 2D reduced model forms it (MesoSolver2D::averaged_force_x).
+// With `density`, also ρ̄ (2.8) of the same particles.
 void averaged_body_force(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& mesh,
-                         Eigen::VectorXd& fx, Eigen::VectorXd& fy);
+                         Eigen::VectorXd& fx, Eigen::VectorXd& fy, Eigen::VectorXd* density = nullptr);
 // The baseline for a scene on a given mesh: ρ0, the one phase's viscosity and the body force, averaged with
 // `average_force` where given (the coarse data the reduced model is driven by), else sampled at the nodes.
 // std::invalid_argument for a scene the baseline cannot serve (walls, solids, several phases, not doubly periodic).

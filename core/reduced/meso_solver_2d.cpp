@@ -9,6 +9,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/memory_limit.hpp"
 #include "core/closure/reconstruction.hpp"
+#include "core/continuum/coarse_navier_stokes_2d.hpp"
 #include "core/sph/sph_run.hpp"
 
 namespace closurelab {
@@ -206,22 +207,12 @@ MesoSolver2D::MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, De
   add_setup(quad_cost_, on_y_faces_.setup_cost());
   // ρ̄ (2.8) and F̄ = (2.14) / (2.8) of the lattice: the mass-weighted average of the body force, i.e. the
   // velocity average (2.9) of particles that carry F(q) as their velocity.
-  ParticleSystem lattice = scene.make_particles();
-  for (std::size_t a = 0; a < lattice.size(); ++a) {
-    const Vec2 f = scene.body_force ? scene.body_force(lattice.x[a], lattice.y[a])
-                                    : Vec2(scene.force_x ? scene.force_x(lattice.y[a]) : 0.0, 0.0);
-    lattice.vx[a] = f.x();
-    lattice.vy[a] = f.y();
-  }
-  const MesoFields f = average_particles(lattice, scene.box, kernel, coarse_, AveragingRequest{});
-  rho_bar_ = f.rho;
+  averaged_body_force(scene, kernel, coarse_, fx_, fy_, &rho_bar_);
   lattice_pressure_factor_ = lattice_pressure_factor(scene);
   if (opt_.equations == CoarseEquations::incompressible)
     projection_ = std::make_unique<PeriodicProjection2D>(divergence_symbol(coarse_.nx(), coarse_.x.spacing, opt_.divergence_order),
                                                          divergence_symbol(coarse_.ny(), coarse_.y.spacing, opt_.divergence_order));
   particle_mass_ = scene.particle_mass();
-  fx_ = f.vx;
-  fy_ = f.vy;
   vx_ = vy_ = Eigen::VectorXd::Zero(coarse_.size());
 }
 

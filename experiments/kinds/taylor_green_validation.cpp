@@ -6,32 +6,43 @@
 
 #include "core/base/metrics.hpp"
 #include "core/sph/sph_engine.hpp"
+#include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/validation_row.hpp"
 #include "experiments/runner/provenance.hpp"
 
 namespace closurelab {
 
-json run_taylor_green_validation(const Scene& scene, SphRunOptions opt) {
-  const Scene::TaylorGreenVortex& tg = scene.taylor_green.value();
+std::vector<double> taylor_green_saved_times(double target_time) {
   constexpr int kSnapshots = 20;
-  opt.snapshot_times.clear();
-  for (int k = 1; k <= kSnapshots; ++k) opt.snapshot_times.push_back(opt.target_time * k / kSnapshots);
+  std::vector<double> times;
+  for (int k = 1; k <= kSnapshots; ++k) times.push_back(target_time * k / kSnapshots);
+  return times;
+}
+
+json run_taylor_green_validation(const json& cfg, const Scene& scene, const AveragingKernel& kernel,
+                                 double observe_spacing, const std::function<void(const std::string&)>& progress) {
+  const Scene::TaylorGreenVortex& tg = scene.taylor_green.value();
+  const SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
+  const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("solver"), observe_spacing,
+                                 taylor_green_saved_times(opt.target_time)};
+  const StoredReference direct = stored_direct_reference(request, scene, kernel, progress);
+  const ParticleSystem& ps = direct.particles;
+  const SphRunResult sph = SphRunResult::from_json(direct.run);
   json times = json::array(), computed = json::array(), exact = json::array(), relative = json::array();
   double worst = 0.0, last = 0.0;
-  opt.on_snapshot = [&](double t, const ParticleSystem& ps) {
+  for (const ParticleSnapshot& snap : direct.snapshots) {
     double v2 = 0.0;
-    for (std::size_t a = 0; a < ps.size(); ++a)
-      if (!ps.fixed[a]) v2 = std::max(v2, ps.vx[a] * ps.vx[a] + ps.vy[a] * ps.vy[a]);
-    const double v = std::sqrt(v2), e = tg.max_speed(t), err = std::abs(v - e) / e;
+    for (std::size_t a = 0; a < snap.particles.size(); ++a)
+      if (!snap.particles.fixed[a])
+        v2 = std::max(v2, snap.particles.vx[a] * snap.particles.vx[a] + snap.particles.vy[a] * snap.particles.vy[a]);
+    const double t = snap.time, v = std::sqrt(v2), e = tg.max_speed(t), err = std::abs(v - e) / e;
     times.push_back(t);
     computed.push_back(v);
     exact.push_back(e);
     relative.push_back(err);
     worst = std::max(worst, err);
     last = err;
-  };
-  ParticleSystem ps = scene.make_particles();
-  const SphRunResult sph = run_direct_sph(scene, ps, opt);
+  }
   json row = validation_row_header(sph, {{"dx", scene.dx},
                                          {"h", scene.h},
                                          {"sound_speed", scene.sound_speed},
@@ -39,6 +50,7 @@ json run_taylor_green_validation(const Scene& scene, SphRunOptions opt) {
                                          {"kinematic_viscosity", scene.phase_viscosity[0] / scene.rho0},
                                          {"decay_rate", tg.decay_rate},
                                          {"formulation", name_of(opt.engine.formulation)}});
+  row["direct_sph"] = direct.run;  // with its reference_store record
   if (sph.status == Status::numerical_issue) return row;
   json errors;
   errors["max_speed"] = {{"times", times},           {"computed", computed}, {"exact", exact},

@@ -23,7 +23,10 @@ std::vector<double> taylor_green_saved_times(double target_time);
 // Runs `scene` (which must declare taylor_green) to the solver's target_time through the reference store (the key:
 // the cell's scene, kernel and solver sections, `observe_spacing` (absolute) and the saved times) and returns the
 // kind's row: status, direct_sph (with reference_store: entry, reused, computed_by), scene_derived,
-// errors.max_speed (times, computed, exact, relative_error, worst, final), errors.particles_vs_exact,
+// errors.max_speed (times, computed, exact, relative_error, worst, final), errors.averaged_vs_averaged_exact (at the
+// same times: the particles averaged onto the averaging mesh against the exact field times the window's symbol,
+// max_rel and l2_rel relative to the averaged field's largest speed; worst_max_rel, window_factor,
+// mesh_nodes_per_side), errors.particles_vs_exact,
 // errors.number_density ((max − min)/mean, max |n/mean − 1|), cost.
 json run_taylor_green_validation(const json& cfg, const Scene& scene, const AveragingKernel& kernel,
                                  double observe_spacing, const std::function<void(const std::string&)>& progress);

@@ -59,5 +59,15 @@ TEST(TaylorGreenReference, TheValidationStoresItsParticlesAtTheSavedTimesAndReus
     EXPECT_EQ(ms.at("computed")[k].get<double>(), std::sqrt(v2)) << k;  // the row is read from the stored steps
   }
   EXPECT_EQ(steps.back().particles.x, steps[saved.size() - 1].particles.x);  // the last saved time is the end
+  // The averaged particles against the averaged exact field at each saved time (the reduced model's reference).
+  const json& avg = first.at("errors").at("averaged_vs_averaged_exact");
+  ASSERT_EQ(avg.at("max_rel").size(), saved.size());
+  ASSERT_EQ(avg.at("l2_rel").size(), saved.size());
+  EXPECT_GT(avg.at("window_factor").get<double>(), 0.5);
+  EXPECT_LT(avg.at("window_factor").get<double>(), 1.0);
+  for (std::size_t k = 0; k < saved.size(); ++k) {
+    EXPECT_TRUE(std::isfinite(avg.at("l2_rel")[k].get<double>())) << k;
+    EXPECT_LE(avg.at("max_rel")[k].get<double>(), avg.at("worst_max_rel").get<double>()) << k;
+  }
   fs::remove_all(store);
 }

@@ -168,11 +168,8 @@ class SphValidation : public ExperimentKind {
       opt.progress = progress;
       return run_permeability_validation(*scene, opt);
     }
-    if (scene->taylor_green) {  // the decay of the largest speed against the exact one
-      SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
-      opt.progress = progress;
-      return run_taylor_green_validation(*scene, opt);
-    }
+    if (scene->taylor_green)  // the decay of the largest speed against the exact one, the particles stored at 20 times
+      return run_taylor_green_validation(cfg, *scene, *kernel, spacing, progress);
     if (scene->cellular_mode) {
       SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
       opt.progress = progress;

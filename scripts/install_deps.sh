@@ -5,12 +5,13 @@
 set -euo pipefail
 packages=(cmake g++ make git libeigen3-dev libgsl-dev nlohmann-json3-dev libsuitesparse-dev libgtest-dev
           libbenchmark-dev libomp-dev libhdf5-dev python3 python3-h5py libopenmpi-dev openmpi-bin python3-pysph
-          python3-pandas python3-matplotlib)
+          python3-pandas python3-matplotlib libsundials-dev)
 # python3-h5py: the tests check that the reference store's H5Part files open in h5py, and read one it wrote.
 # python3-pandas: the table reader python/closurelab/tables.py (and its test); python3-matplotlib: the summaries'
 # figures (scripts/reproduce.sh, the test summaries_every_kind); both for Debian's /usr/bin/python3.
 # python3-pysph: the peer test (ctest -L peer) runs an independent PySPH model of the channel against the engine
 # (under /usr/bin/python3; without it that test reports SKIP).
+# libsundials-dev: SUNDIALS ARKODE, the integrators arkode_erk and arkode_imex (core/reduced/integrator_arkode.cpp).
 # (`--figures`, which added python3-matplotlib, is still accepted: it is now in the list.)
 missing=()
 for p in "${packages[@]}"; do

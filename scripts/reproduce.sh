@@ -91,6 +91,7 @@ experiments/cellular/direct.json results/cellular/direct
 experiments/cellular/reduced.json results/cellular/reduced
 experiments/speed_vs_error/cellular.json results/speed_vs_error/cellular
 experiments/cellular/coarse_continuum.json results/cellular/coarse_continuum
+experiments/taylor_green/tvf_re100_perturbed.json results/taylor_green/tvf_re100_perturbed
 experiments/taylor_green/coarse_continuum_re100.json results/taylor_green/coarse_continuum_re100
 experiments/taylor_green/reduced_2d_re100.json results/taylor_green/reduced_2d_re100
 LIST

@@ -36,6 +36,9 @@ ParamSpec object_param(std::string name, json def, std::string description) {
 ParamSpec array_param(std::string name, json def, std::string description) {
   return ParamSpec{std::move(name), ParamType::Array, std::move(def), std::move(description)};
 }
+ParamSpec entry_param(std::string name, json def, std::string description) {
+  return ParamSpec{std::move(name), ParamType::Entry, std::move(def), std::move(description)};
+}
 
 std::string to_string(ParamType t) {
   switch (t) {
@@ -45,6 +48,7 @@ std::string to_string(ParamType t) {
     case ParamType::Boolean: return "boolean";
     case ParamType::Object: return "object";
     case ParamType::Array: return "array";
+    case ParamType::Entry: return "name or object";
   }
   return "?";
 }
@@ -59,6 +63,7 @@ bool type_matches(const json& v, ParamType t) {
     case ParamType::Boolean: return v.is_boolean();
     case ParamType::Object: return v.is_object();
     case ParamType::Array: return v.is_array();
+    case ParamType::Entry: return v.is_string() || (v.is_object() && v.contains("name") && v.at("name").is_string());
   }
   return false;
 }
@@ -150,7 +155,10 @@ json resolve_params(const json& given_as_written, const ParamSchema& schema, con
       v = p.default_value;
     }
     if (!type_matches(v, p.type))
-      throw ConfigError(at, "expected " + to_string(p.type) + ", got " + std::string(v.type_name()) + " (" + v.dump() + ")");
+      throw ConfigError(at, "expected " +
+                                (p.type == ParamType::Entry ? std::string("a name or an object with a string \"name\"")
+                                                            : to_string(p.type)) +
+                                ", got " + std::string(v.type_name()) + " (" + v.dump() + ")");
     if (p.type == ParamType::Integer) check_integer_width(v, p.integer_kind, at);
     if (p.type == ParamType::Number || p.type == ParamType::Integer) {
       const double x = v.get<double>();

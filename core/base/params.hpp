@@ -11,7 +11,9 @@ namespace closurelab {
 
 using json = nlohmann::json;
 
-enum class ParamType { Integer, Number, String, Boolean, Object, Array };
+// Entry: a registered strategy named by a string, or an object {"name": ..., its parameters...} (e.g. the solver's
+// time_integration); only that shape is checked here, the entry's own schema where the registry is known.
+enum class ParamType { Integer, Number, String, Boolean, Object, Array, Entry };
 // The C++ type an Integer parameter is read into: its range bounds the value whatever min/max say (a value
 // that does not fit is an error naming the path, never a silent truncation).
 enum class IntegerKind { int32, int64, uint64 };
@@ -37,6 +39,7 @@ ParamSpec string_param(std::string name, json def, std::string description, std:
 ParamSpec bool_param(std::string name, bool def, std::string description);
 ParamSpec object_param(std::string name, json def, std::string description);
 ParamSpec array_param(std::string name, json def, std::string description);
+ParamSpec entry_param(std::string name, json def, std::string description);
 
 using ParamSchema = std::vector<ParamSpec>;
 

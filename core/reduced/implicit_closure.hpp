@@ -11,8 +11,15 @@
 
 namespace closurelab {
 
-// The integrator a resolved solver section's time_integration names, from `registry`; an unknown name is a
-// ConfigError at `path`/solver/time_integration listing the known ones.
+// A solver section's time_integration as given (a name, or {"name": ..., parameters}) checked against `registry`
+// and resolved: the name alone for an entry without parameters (explicit, backward_euler: as specs wrote it before
+// integrators took parameters), else the object with every parameter (defaults filled). ConfigError at `path` (the
+// time_integration's JSON path; /name for an object's unknown name, the parameter's path for a bad parameter).
+json resolve_time_integration(const Registry& registry, const json& given, const std::string& path);
+// The integrator's name in a resolved solver section.
+std::string integrator_name(const json& resolved_solver);
+// The integrator a resolved solver section's time_integration names, from `registry`; an unknown name or a bad
+// parameter is a ConfigError at `path`/solver/time_integration listing the known ones.
 std::unique_ptr<Integrator> make_integrator(const Registry& registry, const json& resolved_solver,
                                             const std::string& path);
 // With an integrator that needs an affine rate (backward_euler), cg/cgls is a ConfigError at

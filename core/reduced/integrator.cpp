@@ -102,6 +102,7 @@ void register_integrators(Registry& r) {
                      "parameters; a parameter rule is served by the two-pass rule), whose Jacobian is probed once",
                      {}},
                     [](const json&) { return std::make_unique<BackwardEuler>(); });
+  register_arkode_integrators(r);
 }
 
 }  // namespace closurelab

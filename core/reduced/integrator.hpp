@@ -7,7 +7,17 @@
 //   backward_euler  implicit in the whole rate, for a rate affine in u (a closure with fixed parameters): the
 //                   Jacobian probed once with unit vectors and checked for affinity at a second point, then
 //                   (I − dt J) u' = u + dt (f(b) − J b) over the free entries, b the probe's base.
-// An instance serves one model (backward Euler keeps the Jacobian it probed on its first step).
+//   arkode_erk      SUNDIALS ARKODE ERKStep (integrator_arkode.cpp): u integrated from t to t + dt by an embedded
+//                   explicit Runge–Kutta pair with local error control (rtol, atol; internal steps as needed, a stop
+//                   time at t + dt), or method forward_euler: one stage at the fixed step dt (the explicit step
+//                   through ARKODE);
+//   arkode_imex     SUNDIALS ARKODE ARKStep: additive Runge–Kutta with error control, the rate's `stiff` part
+//                   implicit (Newton, matrix-free GMRES with difference-quotient J·v), the rest explicit; a model
+//                   that offers no split is integrated implicitly whole (the pair's DIRK table).
+// The ARKODE ones hold the held entries at rate zero during the step and reset them after it, as `explicit` does;
+// they need no affine rate. Parameters (a spec's time_integration {"name": ..., ...}) are each entry's schema.
+// An instance serves one model (backward Euler keeps the Jacobian it probed on its first step; an ARKODE one its
+// SUNDIALS context and memory, and the step size its error control chose last).
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
@@ -25,6 +35,12 @@ struct CoarseRate {
   // The entries a step leaves at their held values (null: none is held).
   const std::vector<bool>* held = nullptr;
   const Eigen::VectorXd* held_values = nullptr;
+  // Optional, for an IMEX integrator (arkode_imex): the part of the rate treated implicitly (the stiff, viscous
+  // part), same signature as `at`. Null: no split (arkode_imex then treats the whole rate implicitly).
+  std::function<bool(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue)> stiff{};
+  // Optional with `stiff`: the explicit part, at − stiff, when the model computes it apart (null: at − stiff,
+  // one call of each).
+  std::function<bool(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue)> nonstiff{};
 };
 
 class Integrator {
@@ -42,7 +58,8 @@ class Integrator {
 // The held entries of u set to their values.
 void hold_entries(const CoarseRate& f, Eigen::VectorXd& u);
 
-// Adds the built-in integrators to r.integrators.
+// Adds the built-in integrators to r.integrators (the ARKODE ones by register_arkode_integrators).
 void register_integrators(Registry& r);
+void register_arkode_integrators(Registry& r);
 
 }  // namespace closurelab

@@ -94,7 +94,8 @@ struct MesoSolverOptions : TimeLoopOptions {
   MesoBalance balance = MesoBalance::stress_divergence;
   // The step itself is the Integrator's the solver is given (core/reduced/integrator.hpp; the solver section's
   // time_integration names it: "explicit", the paper's forward Euler, or "backward_euler", stable for the stiff
-  // fluid–wall coupling of evolved wall-surface nodes, same steady state).
+  // fluid–wall coupling of evolved wall-surface nodes, same steady state; or an ARKODE one, arkode_erk or
+  // arkode_imex, with its parameters: the 1D model offers no stiff split, so arkode_imex steps it implicitly whole).
 };
 
 // Oracle substitution (the error budget): ingredients of the reduced model replaced by their exact

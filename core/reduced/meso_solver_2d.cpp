@@ -32,8 +32,10 @@ ParamSchema meso_solver_2d_schema() {
                  "incompressible: the convective flux"),
       bool_param("coarse_pressure", d.coarse_pressure,
                  "mass_momentum: the pressure of the coarse density, -c_lat P(rho) I (false: the lattice's P*)"),
-      string_param("time_integration", "explicit",
-                   "the integrator family's member that steps the coarse state (closurelab list integrator)")};
+      entry_param("time_integration", "explicit",
+                  "the registered integrator that steps the coarse state (closurelab list integrator), a name or "
+                  "{\"name\": ..., its parameters}; mass_momentum needs one whose stability region holds the imaginary "
+                  "axis (arkode_erk), not explicit")};
   for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
   return schema;
 }

@@ -25,9 +25,11 @@ ParamSchema meso_solver_schema() {
                    "force_density (exact divergence of (2.13): the averaged pair forces on the fluid particles, "
                    "wall constraint forces included; the quadrature is then unused)",
                    names_of<MesoBalance>()),
-      string_param("time_integration", "explicit",
-                   "the registered integrator (closurelab list integrator): explicit (forward Euler, the paper) or "
-                   "backward_euler (implicit; needs a closure with fixed parameters, whose rate is affine in v)")};
+      entry_param("time_integration", "explicit",
+                  "the registered integrator (closurelab list integrator), a name or {\"name\": ..., its parameters}: "
+                  "explicit (forward Euler, the paper), backward_euler (implicit; needs a closure with fixed "
+                  "parameters, whose rate is affine in v), arkode_erk (SUNDIALS adaptive explicit Runge-Kutta) or "
+                  "arkode_imex (SUNDIALS additive Runge-Kutta, implicit part by Newton-Krylov)")};
   for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
   return schema;
 }
@@ -45,13 +47,32 @@ std::string closure_nonlinearity(const json& deconvolver) {
                            : "";
 }
 
+json resolve_time_integration(const Registry& registry, const json& given, const std::string& path) {
+  const json config = given.is_string() ? json{{"name", given}} : given;
+  if (!config.is_object() || !config.contains("name") || !config.at("name").is_string())
+    throw ConfigError(path, "expected an integrator's name or an object with a string \"name\"; known: " +
+                                registry.integrators.known_names());
+  const std::string name = config.at("name").get<std::string>();
+  if (!registry.integrators.contains(name))
+    throw ConfigError(given.is_string() ? path : path + "/name",
+                      "unknown integrator '" + name + "'; known: " + registry.integrators.known_names());
+  json resolved = registry.integrators.resolve(config, path);
+  // An entry without parameters stays its name: a spec that names one resolves as it did before integrators
+  // took parameters (the stored rows and cell ids of explicit and backward_euler are unchanged).
+  if (resolved.size() == 1) return name;
+  return resolved;
+}
+
+std::string integrator_name(const json& resolved_solver) {
+  const json& t = resolved_solver.at("time_integration");
+  return t.is_string() ? t.get<std::string>() : t.at("name").get<std::string>();
+}
+
 std::unique_ptr<Integrator> make_integrator(const Registry& registry, const json& resolved_solver,
                                             const std::string& path) {
-  const std::string name = resolved_solver.at("time_integration").get<std::string>();
-  if (!registry.integrators.contains(name))
-    throw ConfigError(path + "/solver/time_integration",
-                      "unknown integrator '" + name + "'; known: " + registry.integrators.known_names());
-  return registry.integrators.create(json{{"name", name}}, path + "/solver/time_integration");
+  const std::string at = path + "/solver/time_integration";
+  const json resolved = resolve_time_integration(registry, resolved_solver.at("time_integration"), at);
+  return registry.integrators.create(resolved.is_string() ? json{{"name", resolved}} : resolved, at);
 }
 
 void check_implicit_closure(const json& solver, const Integrator& integrator, const json& deconvolver,
@@ -62,10 +83,9 @@ void check_implicit_closure(const json& solver, const Integrator& integrator, co
   // chosen once from the steady state at the configured fixed one, then fixed); a Krylov method's iterate is not
   // linear at any count.
   const std::string name = deconvolver.value("name", "");
-  const std::string integrator_name = solver.at("time_integration").get<std::string>();
   if (name == "cg" || name == "cgls")
     throw ConfigError(path + "/solver/time_integration",
-                      integrator_name + " needs a closure linear in the coarse velocity (landweber, landweber_relaxed, "
+                      integrator_name(solver) + " needs a closure linear in the coarse velocity (landweber, landweber_relaxed, "
                       "tikhonov or tsvd, a rule chosen by the two-pass rule); " + closure_nonlinearity(deconvolver) +
                           " (/closure/deconvolver); use time_integration explicit");
 }

@@ -77,6 +77,8 @@ class ReducedModel : public ExperimentKind {
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
     out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
     out["solver"] = resolve_section(cell, "solver", meso_solver_schema(), path);
+    out["solver"]["time_integration"] =
+        resolve_time_integration(reg, out["solver"]["time_integration"], path + "/solver/time_integration");
     check_time_loop(out["solver"], path + "/solver");
     check_implicit_closure(out["solver"], *make_integrator(reg, out["solver"], path), out["closure"]["deconvolver"], path);
     out["reference"] = resolve_section(cell, "reference", reference_with_file_schema(), path);

@@ -89,6 +89,8 @@ class ReducedModel2D : public ExperimentKind {
     out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
     out["solver"] = resolve_section(cell, "solver", meso_solver_2d_schema(), path);
     check_time_loop(out["solver"], path + "/solver");
+    out["solver"]["time_integration"] =
+        resolve_time_integration(reg, out["solver"]["time_integration"], path + "/solver/time_integration");
     {  // the integrator: registered, and able to serve the closure and the equations
       const auto integrator = make_integrator(reg, out["solver"], path);
       check_implicit_closure(out["solver"], *integrator, out["closure"]["deconvolver"], path);
@@ -97,7 +99,7 @@ class ReducedModel2D : public ExperimentKind {
       if (integrator->needs_affine_rate() &&
           (equations == "mass_momentum" || (equations == "incompressible" && s.at("transport").get<bool>())))
         throw ConfigError(path + "/solver/time_integration",
-                          s.at("time_integration").get<std::string>() + " needs a rate affine in the coarse state; " +
+                          integrator_name(s) + " needs a rate affine in the coarse state; " +
                               equations + "'s is not (the convective flux" +
                               (equations == "mass_momentum" ? ", the pressure of the density, v = (rho v) / rho" : "") +
                               "): use an explicit integrator");

@@ -232,7 +232,7 @@ TEST(TransportVelocity, TaylorGreenSceneIsPySphs) {
   EXPECT_NEAR(s->taylor_green->pressure_at(0.0, 0.0, 0.0), -0.5, 1e-15);
   EXPECT_NEAR(s->time_scale(), 100.0 / (8.0 * M_PI * M_PI), 1e-14);
   ASSERT_TRUE(s->cellular_mode.has_value());
-  for (const Vec2 p : {Vec2(0.1, 0.7), Vec2(0.33, 0.21), Vec2(0.9, 0.05)}) {
+  for (const Vec2& p : {Vec2(0.1, 0.7), Vec2(0.33, 0.21), Vec2(0.9, 0.05)}) {
     const double k = s->cellular_mode->wavenumber, o = s->cellular_mode->offset;
     const Vec2 mode(std::sin(k * (p.x() + o)) * std::cos(k * (p.y() + o)), -std::cos(k * (p.x() + o)) * std::sin(k * (p.y() + o)));
     const Vec2 v = s->taylor_green->velocity_at(p.x(), p.y(), 0.3);

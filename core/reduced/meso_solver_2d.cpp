@@ -284,8 +284,16 @@ bool MesoSolver2D::rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& i
   return true;
 }
 
-void MesoSolver2D::convective_flux(const FaceStress& t, Eigen::VectorXd& fxx, Eigen::VectorXd& fxy,
-                                   Eigen::VectorXd& fyy) const {
+void MesoSolver2D::subtract_convective_flux(FaceStress& t) const {
+  const int o = opt_.divergence_order;
+  const auto [fxx, fxy, fyy] = convective_flux(t);
+  t.txx -= to_faces(coarse_, fxx, 0, o);
+  t.tyx -= to_faces(coarse_, fxy, 0, o);
+  t.txy -= to_faces(coarse_, fxy, 1, o);
+  t.tyy -= to_faces(coarse_, fyy, 1, o);
+}
+
+std::array<Eigen::VectorXd, 3> MesoSolver2D::convective_flux(const FaceStress& t) const {
   // Φ = ρ̄ [A(V⊗V) − v̄⊗A(V) − A(V)⊗v̄ + 2 v̄⊗v̄] at the centres (ρ̄v̄⊗v̄ − T_c of (2.12), V the closure's velocities).
   const Eigen::VectorXd wx = op_.apply(t.rx), wy = op_.apply(t.ry);
   const auto flux = [&](const Eigen::VectorXd& ra, const Eigen::VectorXd& rb, const Eigen::VectorXd& va,
@@ -294,23 +302,14 @@ void MesoSolver2D::convective_flux(const FaceStress& t, Eigen::VectorXd& fxx, Ei
     return Eigen::VectorXd(rho_bar_.array() *
                            (q.array() - va.array() * wb.array() - wa.array() * vb.array() + 2.0 * va.array() * vb.array()));
   };
-  fxx = flux(t.rx, t.rx, vx_, vx_, wx, wx);
-  fxy = flux(t.rx, t.ry, vx_, vy_, wx, wy);
-  fyy = flux(t.ry, t.ry, vy_, vy_, wy, wy);
+  return {flux(t.rx, t.rx, vx_, vx_, wx, wx), flux(t.rx, t.ry, vx_, vy_, wx, wy), flux(t.ry, t.ry, vy_, vy_, wy, wy)};
 }
 
 bool MesoSolver2D::incompressible_rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue) {
   FaceStress t;
   if (!interaction_stress(t, issue)) return false;
   const int o = opt_.divergence_order;
-  if (opt_.transport) {
-    Eigen::VectorXd fxx, fxy, fyy;
-    convective_flux(t, fxx, fxy, fyy);
-    t.txx -= to_faces(coarse_, fxx, 0, o);
-    t.tyx -= to_faces(coarse_, fxy, 0, o);
-    t.txy -= to_faces(coarse_, fxy, 1, o);
-    t.tyy -= to_faces(coarse_, fyy, 1, o);
-  }
+  if (opt_.transport) subtract_convective_flux(t);
   ax = (face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o)).cwiseQuotient(rho_bar_) + fx_;
   ay = (face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o)).cwiseQuotient(rho_bar_) + fy_;
   projection_->project(ax, ay);
@@ -333,12 +332,7 @@ bool MesoSolver2D::conservative_rate(const Eigen::VectorXd& u, Eigen::VectorXd& 
   const auto faces = [&](const Eigen::VectorXd& c, int axis) { return to_faces(coarse_, c, axis, o); };
   Eigen::VectorXd drho = Eigen::VectorXd::Zero(n);
   if (opt_.transport) {
-    Eigen::VectorXd fxx, fxy, fyy;
-    convective_flux(t, fxx, fxy, fyy);
-    t.txx -= faces(fxx, 0);
-    t.tyx -= faces(fxy, 0);
-    t.txy -= faces(fxy, 1);
-    t.tyy -= faces(fyy, 1);
+    subtract_convective_flux(t);
     drho = -(face_difference(coarse_, faces(mx, 0), 0, o) + face_difference(coarse_, faces(my, 1), 1, o));
   }
   if (opt_.coarse_pressure) {

@@ -164,8 +164,10 @@ class MesoSolver2D {
     Eigen::VectorXd rx, ry, txx, tyx, txy, tyy;
   };
   bool interaction_stress(FaceStress& s, std::string& issue);
-  // The convective flux Φ at the centres (xx, xy, yy) from the closure's velocities in `t` and the current v̄, ρ̄.
-  void convective_flux(const FaceStress& t, Eigen::VectorXd& fxx, Eigen::VectorXd& fxy, Eigen::VectorXd& fyy) const;
+  // The convective flux Φ at the centres (xx, xy, yy) from the closure's velocities in `t` and the current v̄, ρ̄;
+  // and `t` less Φ interpolated to its faces.
+  std::array<Eigen::VectorXd, 3> convective_flux(const FaceStress& t) const;
+  void subtract_convective_flux(FaceStress& t) const;
   // The rate of v̄ under incompressible.
   bool incompressible_rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue);
   // The rate of u = (ρ̄v̄_x, ρ̄v̄_y, ρ̄) under mass_momentum.

@@ -82,7 +82,7 @@ class ReducedModel2D : public ExperimentKind {
     auto scene = build_scene(cell, path, reg, &out["scene"]);
     if (!scene->cellular_mode)
       throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no cellular mode (the 2D model's exact "
-                                                                    "solution); use the cellular scene");
+                                                                    "solution); use the cellular or the taylor-green scene");
     auto kernel = build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["closure"] = resolve_section(cell, "closure", closure_schema(), path);
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");

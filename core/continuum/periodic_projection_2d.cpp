@@ -2,47 +2,32 @@
 
 #include <cmath>
 #include <stdexcept>
-#include <unsupported/Eigen/FFT>
+
+#include "core/base/periodic_fft_2d.hpp"
 
 namespace closurelab {
 
 using Complex = std::complex<double>;
 
-// The 2D discrete Fourier transform of a field on the mesh (flat j · nx + i) by 1D transforms along x, then y.
+// The 2D transform of a real field (flat j · nx + i) and the real part of an inverse.
 struct PeriodicProjection2D::Fft {
-  int nx, ny;
-  Eigen::FFT<double> fft;
-  std::vector<Complex> in_x, out_x, in_y, out_y, hx, hy, phi;
+  PeriodicFft2D fft;
+  std::vector<Complex> hx, hy, phi;
 
-  Fft(int nx_, int ny_) : nx(nx_), ny(ny_), in_x(nx_), out_x(nx_), in_y(ny_), out_y(ny_) {}
+  Fft(int nx, int ny) : fft(nx, ny) {}
+  int nx() const { return fft.nx(); }
+  int ny() const { return fft.ny(); }
 
   void forward(const Eigen::VectorXd& f, std::vector<Complex>& hat) {
-    hat.resize(static_cast<size_t>(nx) * ny);
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) in_x[i] = f[j * nx + i];
-      fft.fwd(out_x, in_x);
-      for (int i = 0; i < nx; ++i) hat[j * nx + i] = out_x[i];
-    }
-    for (int i = 0; i < nx; ++i) {
-      for (int j = 0; j < ny; ++j) in_y[j] = hat[j * nx + i];
-      fft.fwd(out_y, in_y);
-      for (int j = 0; j < ny; ++j) hat[j * nx + i] = out_y[j];
-    }
+    hat.assign(f.data(), f.data() + f.size());
+    fft.forward(hat);
   }
 
   // The real part of the inverse transform (scaled: inverse(forward(f)) = f).
   void inverse(std::vector<Complex>& hat, Eigen::VectorXd& f) {
-    for (int i = 0; i < nx; ++i) {
-      for (int j = 0; j < ny; ++j) in_y[j] = hat[j * nx + i];
-      fft.inv(out_y, in_y);
-      for (int j = 0; j < ny; ++j) hat[j * nx + i] = out_y[j];
-    }
-    f.resize(static_cast<Eigen::Index>(nx) * ny);
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) in_x[i] = hat[j * nx + i];
-      fft.inv(out_x, in_x);
-      for (int i = 0; i < nx; ++i) f[j * nx + i] = out_x[i].real();
-    }
+    fft.inverse(hat);
+    f.resize(static_cast<Eigen::Index>(hat.size()));
+    for (std::size_t k = 0; k < hat.size(); ++k) f[static_cast<Eigen::Index>(k)] = hat[k].real();
   }
 };
 
@@ -65,16 +50,16 @@ std::vector<double> PeriodicProjection2D::central_symbol(int n, double h) {
 
 void PeriodicProjection2D::project(Eigen::VectorXd& vx, Eigen::VectorXd& vy, Eigen::VectorXd* potential) {
   Fft& f = *fft_;
-  if (vx.size() != static_cast<Eigen::Index>(f.nx) * f.ny || vy.size() != vx.size())
+  if (vx.size() != static_cast<Eigen::Index>(f.nx()) * f.ny() || vy.size() != vx.size())
     throw std::invalid_argument("periodic projection: the field must have one value per node");
   f.forward(vx, f.hx);
   f.forward(vy, f.hy);
   if (potential) f.phi.assign(f.hx.size(), Complex(0.0, 0.0));
-  for (int j = 0; j < f.ny; ++j)
-    for (int i = 0; i < f.nx; ++i) {
+  for (int j = 0; j < f.ny(); ++j)
+    for (int i = 0; i < f.nx(); ++i) {
       const double dx = sx_[i], dy = sy_[j], d2 = dx * dx + dy * dy;
       if (d2 == 0.0) continue;  // no discrete divergence to remove
-      const size_t k = static_cast<size_t>(j) * f.nx + i;
+      const size_t k = static_cast<size_t>(j) * f.nx() + i;
       const Complex s = (dx * f.hx[k] + dy * f.hy[k]) / d2;
       f.hx[k] -= dx * s;
       f.hy[k] -= dy * s;

@@ -5,12 +5,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <map>
 #include <stdexcept>
 
 #include "core/base/errors.hpp"
+#include "core/base/periodic_fft_2d.hpp"
 #include "core/sph/sph_kernel.hpp"
 #include "core/sph/sph_pair_force.hpp"
+#include "core/averaging/averaging.hpp"
 #include "core/averaging/bond_weights.hpp"
 
 namespace closurelab {
@@ -26,11 +29,23 @@ std::string divisors_of(int n) {
 
 }  // namespace
 
-CoarseQuadrature::CoarseQuadrature(int stride_x, int stride_y, bool refine_walls)
-    : stride_x_(stride_x), stride_y_(stride_y), refine_walls_(refine_walls) {
+using Complex = std::complex<double>;
+
+// Per offset j, the DFT of its bond-weight stencil about R-cell 0 on the node mesh.
+struct CoarseQuadrature::Convolution {
+  PeriodicFft2D fft;
+  std::vector<std::vector<Complex>> stencil_hat;  // [j][node]
+  std::vector<Complex> z, row_x, row_y;           // work: one offset's forces; Σ_j over bond rows b = x, y
+  Convolution(int nx, int ny) : fft(nx, ny) {}
+};
+
+CoarseQuadrature::CoarseQuadrature(int stride_x, int stride_y, bool refine_walls, bool convolution)
+    : stride_x_(stride_x), stride_y_(stride_y), refine_walls_(refine_walls), use_convolution_(convolution) {
   if (stride_x < 0) throw ConfigError("/stride_x", "must be >= 0 (0: x-integrated, for x-invariant scenes)");
   if (stride_y < 1) throw ConfigError("/stride_y", "must be >= 1");
 }
+
+CoarseQuadrature::~CoarseQuadrature() = default;
 
 void CoarseQuadrature::check(const Scene& scene, const TensorMesh2D& nodes,
                              const std::vector<std::string>& components) const {
@@ -176,21 +191,41 @@ void CoarseQuadrature::setup(const Scene& scene, const AveragingKernel& kernel, 
         bond_start.push_back(qa);
       }
 
-  weights_.tabulate(pairs_.size(), nodes.size(), components, [&](std::size_t p, BondWeights& bw) {
-    if (x_integrated)
-      append_bond_weights_x_integrated(kernel, nodes, bond_start[p].y(), pairs_[p].rho.y(), bw);
-    else
-      append_bond_weights(kernel, nodes, bond_start[p], pairs_[p].rho, bw);
-    for (auto& entry : bw) entry.second *= pairs_[p].weight;
-  });
   cost_ = QuadratureCost{};
-  cost_.bond_weights = weights_.entries();
+  convolution_.reset();
+  weights_ = BondWeightTable{};
+  components_ = components;
+  if (use_convolution_ && translation_invariant(scene, nodes, grid)) {
+    // The stencils of R-cell 0 (pairs 0 .. J − 1), transformed once.
+    convolution_ = std::make_unique<Convolution>(nodes.nx(), nodes.ny());
+    convolution_->stencil_hat.resize(static_cast<std::size_t>(offsets_));
+    BondWeights bw;
+    for (int j = 0; j < offsets_; ++j) {
+      bw.clear();
+      append_bond_weights(kernel, nodes, bond_start[j], pairs_[j].rho, bw);
+      std::vector<Complex>& w = convolution_->stencil_hat[j];
+      w.assign(static_cast<std::size_t>(nodes.size()), Complex(0.0, 0.0));
+      for (const auto& [node, b] : bw) w[static_cast<std::size_t>(node)] += b * pairs_[j].weight;
+      cost_.bond_weights += static_cast<long>(bw.size());
+      convolution_->fft.forward(w);
+    }
+  } else {
+    weights_.tabulate(pairs_.size(), nodes.size(), components, [&](std::size_t p, BondWeights& bw) {
+      if (x_integrated)
+        append_bond_weights_x_integrated(kernel, nodes, bond_start[p].y(), pairs_[p].rho.y(), bw);
+      else
+        append_bond_weights(kernel, nodes, bond_start[p], pairs_[p].rho, bw);
+      for (auto& entry : bw) entry.second *= pairs_[p].weight;
+    });
+    cost_.bond_weights = weights_.entries();
+  }
+  set_up_ = true;
   cost_.sample_points = static_cast<long>(points_.size());
   cost_.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 Eigen::Matrix2Xd CoarseQuadrature::sample(const VelocitySampler& sampler) const {
-  if (!weights_.tabulated()) throw std::logic_error("coarse quadrature: evaluate before setup");
+  if (!set_up_) throw std::logic_error("coarse quadrature: evaluate before setup");
   const Eigen::Matrix2Xd v = sampler(points_);
   if (v.cols() != static_cast<Eigen::Index>(points_.size()))
     throw std::logic_error("coarse quadrature: the velocity sampler returned the wrong number of points");
@@ -214,10 +249,68 @@ QuadratureResult CoarseQuadrature::evaluate(const VelocitySampler& sampler) {
     r.message = "coarse quadrature: non-finite sampled velocity";
     return r;
   }
-  r.stress = weights_.accumulate([&](std::size_t p) { return std::make_pair(pair_force(pairs_[p], v), pairs_[p].rho); });
+  if (convolution_)
+    r.stress = convolve(v);
+  else
+    r.stress = weights_.accumulate([&](std::size_t p) { return std::make_pair(pair_force(pairs_[p], v), pairs_[p].rho); });
   r.pair_forces = static_cast<long>(pairs_.size());
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return finite_or_issue(std::move(r), "coarse quadrature");
+}
+
+bool CoarseQuadrature::translation_invariant(const Scene& scene, const TensorMesh2D& nodes, const RGrid& grid) const {
+  if (stride_x_ == 0 || scene.has_walls || !scene.box.periodic_x || !scene.box.periodic_y || !nodes.x.periodic ||
+      !nodes.y.periodic)
+    return false;
+  // One R-cell per node, the R-grid's spacings the node spacings: shifting by an R-cell shifts by a node.
+  const auto same = [](double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)); };
+  if (static_cast<int>(grid.cols.size()) != nodes.nx() || static_cast<int>(grid.rows.size()) != nodes.ny() ||
+      !same(nodes.x.spacing, stride_x_ * scene.dx) || !same(nodes.y.spacing, stride_y_ * scene.dx))
+    return false;
+  // Every R-cell carries the same pairs with the same physics (one phase, no wall ends).
+  const std::size_t J = static_cast<std::size_t>(offsets_);
+  if (pairs_.size() != J * static_cast<std::size_t>(r_nodes_)) return false;
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const VirtualPair &a = pairs_[p], &b = pairs_[p % J];
+    if (a.sa < 0 || a.sb < 0 || a.beta != 0.0 || a.rho != b.rho || a.F != b.F || a.mu_ab != b.mu_ab ||
+        a.p_over_n2 != b.p_over_n2 || a.weight != b.weight)
+      return false;
+  }
+  return true;
+}
+
+std::map<std::string, Eigen::VectorXd> CoarseQuadrature::convolve(const Eigen::Matrix2Xd& v) {
+  Convolution& c = *convolution_;
+  const std::size_t nodes = c.stencil_hat.empty() ? 0 : c.stencil_hat[0].size(), J = c.stencil_hat.size();
+  c.row_x.assign(nodes, Complex(0.0, 0.0));
+  c.row_y.assign(nodes, Complex(0.0, 0.0));
+  c.z.resize(nodes);
+  for (std::size_t j = 0; j < J; ++j) {
+    // Pair (β, j) is pairs_[β J + j], β the R-cell's flat index, which is its node's.
+    for (std::size_t b = 0; b < nodes; ++b) {
+      const Vec2 f = pair_force(pairs_[b * J + j], v);
+      c.z[b] = Complex(f.x(), f.y());
+    }
+    c.fft.forward(c.z);
+    const Vec2& rho = pairs_[j].rho;
+    const std::vector<Complex>& w = c.stencil_hat[j];
+    for (std::size_t k = 0; k < nodes; ++k) {
+      const Complex fw = c.z[k] * w[k];
+      c.row_x[k] += rho.x() * fw;
+      c.row_y[k] += rho.y() * fw;
+    }
+  }
+  c.fft.inverse(c.row_x);  // T_xx + i T_yx
+  c.fft.inverse(c.row_y);  // T_xy + i T_yy
+  std::map<std::string, Eigen::VectorXd> out;
+  for (const auto& name : components_) {
+    const auto [a, b] = component_index(name);
+    const std::vector<Complex>& row = b == 0 ? c.row_x : c.row_y;
+    Eigen::VectorXd t(static_cast<Eigen::Index>(nodes));
+    for (std::size_t k = 0; k < nodes; ++k) t[static_cast<Eigen::Index>(k)] = a == 0 ? row[k].real() : row[k].imag();
+    out[name] = std::move(t);
+  }
+  return out;
 }
 
 Eigen::Matrix2d CoarseQuadrature::virial(const VelocitySampler& sampler) const {

@@ -27,7 +27,20 @@
 // velocities do not depend on x. This is the x-Riemann sum in its limit of infinitely many columns (which
 // the strip's n_x columns already reach to round-off), so N/N_C = n_x s_y and the cost is independent of
 // the strip's width: O(N_C J) with J ≈ π (support/ε')² offsets, independent of N.
+//
+// Doubly periodic scenes without walls, of one phase, whose R-grid is the node mesh (stride_x ε' and stride_y ε'
+// the node spacings, one R-cell per node: the 2D reduced model's face meshes): the weight of the virtual pair
+// (β, ρ_j) at node x is that of (0, ρ_j) at x − c_β, so (5.27) is, for each offset j, a cyclic convolution over
+// the R-grid of the pair forces with one bond-weight stencil W_j. Both rows of T are real, so one complex
+// transform per offset serves them: T_xb + i T_yb = F⁻¹[Σ_j ρ_j,b Ŵ_j F(f_x,j + i f_y,j)]. Setup tabulates the J
+// stencils (J × the window's nodes weights instead of N_C times as many); a call costs J + 2 FFTs of N_C points,
+// independent of N and of the window's width. The same sums as the table, to round-off (tested). Chosen by
+// setup wherever it applies (convolves()); the constructor's `convolution = false` keeps the table (tests, bench).
 #include <Eigen/Core>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "core/sph/scene.hpp"
 #include "core/closure/stress_quadrature.hpp"
@@ -38,8 +51,10 @@ namespace closurelab {
 class CoarseQuadrature : public StressQuadrature {
  public:
   // stride_x = 0: x-integrated (x-invariant scenes only); else strides in lattice spacings, dividing n_x, n_y.
-  // refine_walls: R-rows within one SPH support of a wall at full resolution (see above).
-  CoarseQuadrature(int stride_x, int stride_y, bool refine_walls = false);
+  // refine_walls: R-rows within one SPH support of a wall at full resolution (see above). convolution: the
+  // periodic FFT convolution where it applies (see above); false: always the bond-weight table.
+  CoarseQuadrature(int stride_x, int stride_y, bool refine_walls = false, bool convolution = true);
+  ~CoarseQuadrature() override;
   std::string name() const override { return "coarse"; }
   void check(const Scene& scene, const TensorMesh2D& nodes, const std::vector<std::string>& components) const override;
   void setup(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& nodes,
@@ -53,6 +68,7 @@ class CoarseQuadrature : public StressQuadrature {
   int r_nodes() const { return r_nodes_; }            // N_C
   int offsets() const { return offsets_; }            // J
   std::size_t virtual_pairs() const { return pairs_.size(); }
+  bool convolves() const { return convolution_ != nullptr; }  // setup chose the periodic convolution
 
  private:
   struct VirtualPair {
@@ -75,15 +91,22 @@ class CoarseQuadrature : public StressQuadrature {
   void set_pair_physics(const Scene& scene, int ha, int hb, const Vec2& qa, const Vec2& qb, VirtualPair& p) const;
   Eigen::Matrix2Xd sample(const VelocitySampler& v) const;
   Vec2 pair_force(const VirtualPair& p, const Eigen::Matrix2Xd& v) const;
+  // Whether the periodic convolution applies to these pairs (ordered R-row, R-column, offset) on `nodes`.
+  bool translation_invariant(const Scene& scene, const TensorMesh2D& nodes, const RGrid& grid) const;
+  std::map<std::string, Eigen::VectorXd> convolve(const Eigen::Matrix2Xd& v);
 
   int stride_x_, stride_y_;
-  bool refine_walls_;
+  bool refine_walls_, use_convolution_;
+  bool set_up_ = false;
   int r_nodes_ = 0, offsets_ = 0;
   double coarsening_ = 0.0;  // N/N_C
   double p_over_n2_ = 0.0, n_star_ = 0.0;
   std::vector<Vec2> points_;
   std::vector<VirtualPair> pairs_;
-  BondWeightTable weights_;  // by virtual pair; the weights include ½ N/N_C
+  std::vector<std::string> components_;
+  BondWeightTable weights_;  // by virtual pair; the weights include ½ N/N_C (empty when convolving)
+  struct Convolution;        // the stencils' transforms and the FFT (periodic convolution)
+  std::unique_ptr<Convolution> convolution_;
   QuadratureCost cost_;
 };
 

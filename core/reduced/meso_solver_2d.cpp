@@ -35,7 +35,8 @@ ParamSchema meso_solver_2d_schema() {
       entry_param("time_integration", "explicit",
                   "the registered integrator that steps the coarse state (closurelab list integrator), a name or "
                   "{\"name\": ..., its parameters}; mass_momentum needs one whose stability region holds the imaginary "
-                  "axis (arkode_erk), not explicit")};
+                  "axis (arkode_erk), not explicit; arkode_imex takes the viscous part div T_int implicitly, the rest "
+                  "explicitly")};
   for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
   return schema;
 }
@@ -246,8 +247,12 @@ bool MesoSolver2D::deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std:
   return true;
 }
 
-bool MesoSolver2D::interaction_stress(FaceStress& s, std::string& issue) {
-  if (!deconvolve(vx_, s.rx, issue) || !deconvolve(vy_, s.ry, issue)) return false;
+bool MesoSolver2D::face_stress(bool closure, bool stress, FaceStress& s, std::string& issue) {
+  if ((closure || stress) && (!deconvolve(vx_, s.rx, issue) || !deconvolve(vy_, s.ry, issue))) return false;
+  if (!stress) {
+    s.txx = s.tyx = s.txy = s.tyy = Eigen::VectorXd::Zero(coarse_.size());
+    return true;
+  }
   const Reconstruction recon_x(solution_, 2, s.rx), recon_y(solution_, 2, s.ry);
   const VelocitySampler sampler = [&](const std::vector<Vec2>& points) {
     Eigen::Matrix2Xd out(2, static_cast<Eigen::Index>(points.size()));
@@ -274,13 +279,26 @@ bool MesoSolver2D::interaction_stress(FaceStress& s, std::string& issue) {
 }
 
 bool MesoSolver2D::rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue) {
+  return momentum_rate(RatePart::all, ax, ay, issue);
+}
+
+bool MesoSolver2D::momentum_rate(RatePart part, Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue) {
+  if (part == RatePart::nonstiff) {  // the body force alone
+    ax = fx_;
+    ay = fy_;
+    return true;
+  }
   FaceStress t;
-  if (!interaction_stress(t, issue)) return false;
+  if (!face_stress(true, true, t, issue)) return false;
   const int o = opt_.divergence_order;
   const Eigen::VectorXd div_x = face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o);
   const Eigen::VectorXd div_y = face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o);
-  ax = div_x.cwiseQuotient(rho_bar_) + fx_;
-  ay = div_y.cwiseQuotient(rho_bar_) + fy_;
+  ax = div_x.cwiseQuotient(rho_bar_);
+  ay = div_y.cwiseQuotient(rho_bar_);
+  if (part == RatePart::all) {
+    ax += fx_;
+    ay += fy_;
+  }
   return true;
 }
 
@@ -305,18 +323,25 @@ std::array<Eigen::VectorXd, 3> MesoSolver2D::convective_flux(const FaceStress& t
   return {flux(t.rx, t.rx, vx_, vx_, wx, wx), flux(t.rx, t.ry, vx_, vy_, wx, wy), flux(t.ry, t.ry, vy_, vy_, wy, wy)};
 }
 
-bool MesoSolver2D::incompressible_rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue) {
+bool MesoSolver2D::incompressible_rate(RatePart part, Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue) {
+  const bool stress = part != RatePart::nonstiff;
+  const bool explicit_terms = part != RatePart::stiff, convective = opt_.transport && explicit_terms;
   FaceStress t;
-  if (!interaction_stress(t, issue)) return false;
+  if (!face_stress(convective, stress, t, issue)) return false;
   const int o = opt_.divergence_order;
-  if (opt_.transport) subtract_convective_flux(t);
-  ax = (face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o)).cwiseQuotient(rho_bar_) + fx_;
-  ay = (face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o)).cwiseQuotient(rho_bar_) + fy_;
+  if (convective) subtract_convective_flux(t);
+  ax = (face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o)).cwiseQuotient(rho_bar_);
+  ay = (face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o)).cwiseQuotient(rho_bar_);
+  if (explicit_terms) {
+    ax += fx_;
+    ay += fy_;
+  }
   projection_->project(ax, ay);
   return true;
 }
 
-bool MesoSolver2D::conservative_rate(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue) {
+bool MesoSolver2D::conservative_rate(RatePart part, const Eigen::VectorXd& u, Eigen::VectorXd& dudt,
+                                     std::string& issue) {
   const Eigen::Index n = vx_.size();
   const Eigen::VectorXd mx = u.segment(0, n), my = u.segment(n, n);
   rho_bar_ = u.segment(2 * n, n);
@@ -326,16 +351,17 @@ bool MesoSolver2D::conservative_rate(const Eigen::VectorXd& u, Eigen::VectorXd& 
   }
   vx_ = mx.cwiseQuotient(rho_bar_);
   vy_ = my.cwiseQuotient(rho_bar_);
+  const bool explicit_terms = part != RatePart::stiff, transport = opt_.transport && explicit_terms;
   FaceStress t;
-  if (!interaction_stress(t, issue)) return false;
+  if (!face_stress(transport, part != RatePart::nonstiff, t, issue)) return false;
   const int o = opt_.divergence_order;
   const auto faces = [&](const Eigen::VectorXd& c, int axis) { return to_faces(coarse_, c, axis, o); };
   Eigen::VectorXd drho = Eigen::VectorXd::Zero(n);
-  if (opt_.transport) {
+  if (transport) {
     subtract_convective_flux(t);
     drho = -(face_difference(coarse_, faces(mx, 0), 0, o) + face_difference(coarse_, faces(my, 1), 1, o));
   }
-  if (opt_.coarse_pressure) {
+  if (opt_.coarse_pressure && explicit_terms) {
     Eigen::VectorXd p(n);
     for (Eigen::Index k = 0; k < n; ++k)
       p[k] = -lattice_pressure_factor_ * scene_.pressure(rho_bar_[k] / particle_mass_, particle_mass_);
@@ -343,10 +369,12 @@ bool MesoSolver2D::conservative_rate(const Eigen::VectorXd& u, Eigen::VectorXd& 
     t.tyy += faces(p, 1);
   }
   dudt.resize(3 * n);
-  dudt.segment(0, n) = face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o) +
-                       rho_bar_.cwiseProduct(fx_);
-  dudt.segment(n, n) = face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o) +
-                       rho_bar_.cwiseProduct(fy_);
+  dudt.segment(0, n) = face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o);
+  dudt.segment(n, n) = face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o);
+  if (explicit_terms) {
+    dudt.segment(0, n) += rho_bar_.cwiseProduct(fx_);
+    dudt.segment(n, n) += rho_bar_.cwiseProduct(fy_);
+  }
   dudt.segment(2 * n, n) = drho;
   return true;
 }
@@ -354,9 +382,14 @@ bool MesoSolver2D::conservative_rate(const Eigen::VectorXd& u, Eigen::VectorXd& 
 bool MesoSolver2D::step(double dt, std::string& issue) {
   const Eigen::Index n = vx_.size();
   if (opt_.equations == CoarseEquations::mass_momentum) {  // u = (ρ̄v̄_x, ρ̄v̄_y, ρ̄)
-    const CoarseRate f{[&](const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& why) {
-      return conservative_rate(u, dudt, why);
-    }};
+    const auto part = [&](RatePart p) {
+      return [this, p](const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& why) {
+        return conservative_rate(p, u, dudt, why);
+      };
+    };
+    CoarseRate f{part(RatePart::all)};
+    f.stiff = part(RatePart::stiff);
+    f.nonstiff = part(RatePart::nonstiff);
     Eigen::VectorXd u(3 * n);
     u << rho_bar_.cwiseProduct(vx_), rho_bar_.cwiseProduct(vy_), rho_bar_;
     const bool ok = integrator_.step(f, dt, u, issue);
@@ -367,15 +400,20 @@ bool MesoSolver2D::step(double dt, std::string& issue) {
   }
   // The state u = (v̄_x, v̄_y), its rate (∂_t v̄_x, ∂_t v̄_y); no node is held (doubly periodic).
   const bool incompressible = opt_.equations == CoarseEquations::incompressible;
-  const CoarseRate f{[&](const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& why) {
-    vx_ = u.head(n);
-    vy_ = u.tail(n);
-    Eigen::VectorXd ax, ay;
-    if (!(incompressible ? incompressible_rate(ax, ay, why) : rate(ax, ay, why))) return false;
-    dudt.resize(2 * n);
-    dudt << ax, ay;
-    return true;
-  }};
+  const auto part = [&](RatePart p) {
+    return [this, p, n, incompressible](const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& why) {
+      vx_ = u.head(n);
+      vy_ = u.tail(n);
+      Eigen::VectorXd ax, ay;
+      if (!(incompressible ? incompressible_rate(p, ax, ay, why) : momentum_rate(p, ax, ay, why))) return false;
+      dudt.resize(2 * n);
+      dudt << ax, ay;
+      return true;
+    };
+  };
+  CoarseRate f{part(RatePart::all)};
+  f.stiff = part(RatePart::stiff);
+  f.nonstiff = part(RatePart::nonstiff);
   Eigen::VectorXd u(2 * n);
   u << vx_, vy_;
   const bool ok = integrator_.step(f, dt, u, issue);

@@ -38,6 +38,9 @@
 //                  model's own divergence (face interpolation then face difference, of divergence_order), so the
 //                  discrete divergence of v̄ stays where set_velocity put it (projected there). No sound speed in
 //                  the time step: (5.21)–(5.22) with the largest speed.
+// Integrators (solver.time_integration, core/reduced/integrator.hpp): each set offers its rate whole and split for an
+// IMEX integrator (arkode_imex): the viscous part div T_int implicit, the rest (convective flux, coarse pressure, mass
+// flux, body force) explicit; under incompressible each part projected. The step is (5.21)–(5.22) whichever runs.
 #include <Eigen/Core>
 #include <array>
 #include <functional>
@@ -158,20 +161,25 @@ class MesoSolver2D {
 
  private:
   bool deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std::string& issue);
-  // The closure's velocities on the solution grid and T_int on both face meshes (xx, yx on x-faces; xy, yy on
-  // y-faces) for the current v̄.
+  // The terms a rate evaluation includes: all of them (`at`), or for an IMEX integrator (CoarseRate::stiff and
+  // nonstiff) the viscous part div T_int (implicit) apart from the rest (convective flux, coarse pressure, mass
+  // flux, body force; explicit). Under incompressible each part is projected.
+  enum class RatePart { all, stiff, nonstiff };
+  // The closure's velocities on the solution grid (when `closure`) and T_int on both face meshes (xx, yx on x-faces;
+  // xy, yy on y-faces; when `stress`, which needs `closure`, else zero) for the current v̄.
   struct FaceStress {
     Eigen::VectorXd rx, ry, txx, tyx, txy, tyy;
   };
-  bool interaction_stress(FaceStress& s, std::string& issue);
+  bool face_stress(bool closure, bool stress, FaceStress& s, std::string& issue);
   // The convective flux Φ at the centres (xx, xy, yy) from the closure's velocities in `t` and the current v̄, ρ̄;
   // and `t` less Φ interpolated to its faces.
   std::array<Eigen::VectorXd, 3> convective_flux(const FaceStress& t) const;
   void subtract_convective_flux(FaceStress& t) const;
-  // The rate of v̄ under incompressible.
-  bool incompressible_rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue);
+  // The rate of v̄ under momentum (the public rate() is its `all`) and under incompressible.
+  bool momentum_rate(RatePart part, Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue);
+  bool incompressible_rate(RatePart part, Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue);
   // The rate of u = (ρ̄v̄_x, ρ̄v̄_y, ρ̄) under mass_momentum.
-  bool conservative_rate(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue);
+  bool conservative_rate(RatePart part, const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue);
 
   const Scene& scene_;
   Deconvolver& deconvolver_;

@@ -104,6 +104,30 @@ def cell_table(table, path):
             f"{pct(max(own)) if own else '-'} | {fmt(total)} | "
             f"{fmt(c.get('steps'))} | {fmt(c.get('bond_weights'))} | {fmt(c.get('direct_sph_wall_seconds'))} | "
             f"{fmt(c.get('speed_up'))} |")
+    return lines + transient_table(table["rows"])
+
+
+def transient_table(rows):
+    """Over the saved times, the reduced model against the averaged direct SPH and against the averaged exact
+    field, beside the reference's own error (its floor) at the same times: where the floor is of the size of the
+    first, the reference, not the model, sets the error against it."""
+    rows = [r for r in rows if r.get("status") == "ok" and r.get("transient")]
+    if not rows:
+        return []
+    lines = ["\nOver the transient, at the saved times (% of A): the reduced model against the averaged direct SPH "
+             "and against the averaged exact field, and the *floor* (the averaged direct SPH against the averaged "
+             "exact field) at the same times; *max*: the largest over the times.\n",
+             "| cell | t / tau | vs averaged direct SPH | max | vs averaged exact | max | floor | max |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        times = ", ".join(fmt(s.get("t_over_tau"), 3) for s in r["transient"])
+        cols = []
+        for key in ("reduced_vs_averaged_direct_sph", "reduced_vs_averaged_analytic", "direct_sph_vs_averaged_analytic"):
+            values = [get(s, key, "all_nodes", "max_rel") for s in r["transient"]]
+            present = [x for x in values if x is not None]
+            cols.append(", ".join(pct(x) for x in values) if present else "-")
+            cols.append(pct(max(present)) if present else "-")
+        lines.append(f"| {r['label']} | {times} | " + " | ".join(cols) + " |")
     return lines
 
 

@@ -29,6 +29,7 @@ QUESTIONS = {
     "cellular/coarse_continuum": "How close does the coarse continuum Navier-Stokes baseline on the reduced model's mesh come to the averaged direct SPH of the cellular flow (issue 43)?",
     "taylor_green/coarse_continuum_re100": "How close does the coarse continuum Navier-Stokes baseline come to the averaged exact and direct Taylor-Green vortex at Re = 100 (issue 43)?",
     "taylor_green/reduced_2d_re100": "How close does the 2D reduced model stepped in time, linear and nonlinear (incompressible, convective flux of the closure), come to the averaged direct Taylor-Green vortex at Re = 100 over the transient, and at what cost (issue 43)?",
+    "taylor_green/reference_sound_speed_re100": "Is the Taylor-Green reduced model's error against the direct SPH the reference's own: does the reference's floor (averaged direct SPH against the averaged exact field) fall as its sound speed grows from 10 to 40 U?",
     "speed_vs_error/cellular": "Which closure is fastest for its error in two dimensions (cellular flow)?",
     "two_phase/direct": "Does the direct SPH of the layered two-phase flow reach the analytic piecewise parabolas?",
     "two_phase/two_phase": "Section 7: how close is the reduced model of the two-phase flow to the direct SPH?",

@@ -90,4 +90,8 @@ void finish_reduced_row(json& row, json errors, json cost, const RepeatedReduced
 // errors against it measure another flow). Sets row["status"] and, when it changed, row["message"].
 void propagate_worst_status(json& row, const DeconvolutionIssues& deconvolution_issues, const json* direct_run);
 
+// A parameter rule's choice at the edge of its scan (DeconvolutionStats::note), in the reduced run's record
+// (reduced_model.parameter_choice.notes, reduced_model.two_pass_rule's rule_note) as row["note"]; the status stays.
+void add_rule_notes(json& row);
+
 }  // namespace closurelab

@@ -37,6 +37,20 @@ void check_operator_shape(const json& closure, long rows, long cols, const std::
                         " x " + std::to_string(cols) + " (data x unknowns), not square: " + needs);
 }
 
+void check_truncation_rank(const json& resolved_deconvolver, long rows, long cols, const std::string& shape,
+                           bool under_rule, const std::string& path) {
+  const json& d = resolved_deconvolver;
+  if (d.value("name", "") != "tsvd" || d.value("truncation", "index") != "index" || !d.contains("k")) return;
+  const long k = d.at("k").get<long>(), most = std::min(rows, cols);
+  if (k <= most) return;
+  throw ConfigError(path + "/closure/deconvolver/k",
+                    "tsvd keeps k = " + std::to_string(k) + " singular values, above the rank of the closure's operator: it is " +
+                        std::to_string(rows) + " x " + std::to_string(cols) + " at most (" + shape +
+                        "), so it has at most " + std::to_string(most) + " singular values; use k <= " +
+                        std::to_string(most) +
+                        (under_rule ? " (pass 1 of the two-pass rule runs at the configured k)" : ""));
+}
+
 ParamSchema reference_schema() {
   return {bool_param("direct_sph", true, "run the direct SPH of the same scene as a reference (and for the speed-up)"),
           object_param("solver", json::object(), "direct SPH solver parameters (as in direct_sph_validation)"),

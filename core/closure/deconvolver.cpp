@@ -10,17 +10,19 @@ namespace closurelab {
 
 json DeconvolutionResult::to_json() const {
   auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
-  return json{{"status", to_string(status)},
-              {"stats",
-               {{"iterations", stats.iterations},
-                {"residual_norm", num(stats.residual_norm)},
-                {"solution_norm", num(stats.solution_norm)},
-                {"chosen_parameter", num(stats.chosen_parameter)},
-                {"parameter_name", stats.parameter_name},
-                {"rule", stats.rule},
-                {"message", stats.message}}},
-              {"cost",
-               {{"matvecs", cost.matvecs}, {"setup_seconds", cost.setup_seconds}, {"solve_seconds", cost.solve_seconds}}}};
+  json j{{"status", to_string(status)},
+         {"stats",
+          {{"iterations", stats.iterations},
+           {"residual_norm", num(stats.residual_norm)},
+           {"solution_norm", num(stats.solution_norm)},
+           {"chosen_parameter", num(stats.chosen_parameter)},
+           {"parameter_name", stats.parameter_name},
+           {"rule", stats.rule},
+           {"message", stats.message}}},
+         {"cost",
+          {{"matvecs", cost.matvecs}, {"setup_seconds", cost.setup_seconds}, {"solve_seconds", cost.solve_seconds}}}};
+  if (!stats.note.empty()) j["stats"]["note"] = stats.note;  // only when there is one (older tables have none)
+  return j;
 }
 
 Eigen::MatrixXd Deconvolver::solve_columns(const Eigen::MatrixXd& B, double noise_level,

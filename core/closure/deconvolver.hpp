@@ -33,6 +33,8 @@ struct DeconvolutionStats {
   std::string parameter_name;      // "alpha", "k", "iterations", "order"
   std::string rule;                // "fixed", "discrepancy", "gcv", "lcurve"
   std::string message;             // why the status is not `converged`, or a note
+  std::string note;                // a warning that leaves the status as it is: a rule's choice at the edge of
+                                   // its scan (core/closure/parameter_choice.hpp); empty otherwise
 };
 
 struct DeconvolutionCost {

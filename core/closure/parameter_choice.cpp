@@ -16,6 +16,16 @@ std::string short_number(double v) {
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
 }
+
+// The note of a choice at the edge of the scanned family (most regularized first): the rule's optimum may lie
+// beyond it.
+std::string scan_edge_note(ParameterRule rule, const std::string& name, double chosen, double first, double last,
+                           bool at_first) {
+  return to_string(rule) + " chose " + name + " = " + short_number(chosen) + " at the edge of its scan [" +
+         short_number(std::min(first, last)) + ", " + short_number(std::max(first, last)) + "] (the " +
+         (at_first ? "most" : "least") + " regularized member scanned): the rule's optimum may lie outside the " +
+         "scan; widen the scan";
+}
 }  // namespace
 
 
@@ -92,7 +102,8 @@ void take(DeconvolutionResult& r, const ScanPoint& p) {
 }  // namespace
 
 DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& b, ParameterRule rule,
-                                   double noise_level, double safety, const Seminorm& lcurve_seminorm) {
+                                   double noise_level, double safety, const Seminorm& lcurve_seminorm,
+                                   const std::string& parameter_name) {
   DeconvolutionResult r;
   r.stats.rule = to_string(rule);
   int visited = 0;
@@ -104,9 +115,11 @@ DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& 
     int best_index = -1;
     double best_residual = std::numeric_limits<double>::infinity();
     long total_matvecs = 0;
+    bool met_at_first = false;  // the first member scanned meets it: a more regularized one may too
     d.scan(b, [&](const ScanPoint& p) {
       const bool met = p.residual_norm <= target;
       total_matvecs = p.matvecs;
+      if (visited == 0) met_at_first = met && p.issue.empty() && p.solution_norm > 0;  // x = 0: nothing is more
       if (p.residual_norm < best_residual) {
         best_residual = p.residual_norm;
         best_index = visited;
@@ -137,6 +150,10 @@ DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& 
       r.stats.message = "discrepancy principle not met: smallest residual " + short_number(r.stats.residual_norm) +
                         " > tau*delta = " + short_number(target) + "; returned the smallest-residual member";
     }
+    if (met_at_first && r.status == DeconvolutionStatus::converged)
+      r.stats.note = "discrepancy chose " + parameter_name + " = " + short_number(r.stats.chosen_parameter) +
+                     ", the first (most regularized) member of its scan, which meets the principle already: a more " +
+                     "regularized member outside the scan may meet it too; widen the scan";
     r.stats.iterations = visited;
     return r;
   }
@@ -176,6 +193,9 @@ DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& 
   if (!issue.empty()) {
     r.status = DeconvolutionStatus::numerical_issue;
     r.stats.message = issue;
+  } else if (pick == 0 || pick + 1 == static_cast<int>(pts.size())) {
+    r.stats.note = scan_edge_note(rule, parameter_name, pts[static_cast<size_t>(pick)].parameter, pts.front().parameter,
+                                  pts.back().parameter, pick == 0);
   }
   r.stats.iterations = static_cast<int>(pts.size());
   return r;

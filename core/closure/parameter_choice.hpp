@@ -43,9 +43,14 @@ struct RecordedPoint {
 // A scan point reporting an issue ends the walk there with status numerical_issue. Fills x, status, stats.{residual_norm, solution_norm,
 // chosen_parameter, iterations (points visited), rule, message}. `lcurve_seminorm`, when given, is the L-curve's
 // ordinate x -> ‖Lx‖ in place of ‖x‖ (the result's solution_norm stays ‖x‖).
+// A choice at the edge of the scan fills stats.note (the status stays as it is): gcv or lcurve choosing the first
+// or the last member of the family scanned, [lo, hi] the scanned range, or the discrepancy principle met already by
+// the first (most regularized) member; the rule's own optimum may then lie beyond the scan. `parameter_name` names
+// the parameter in that note ("alpha", "k", ...).
 using Seminorm = std::function<double(const Eigen::VectorXd&)>;
 DeconvolutionResult choose_by_rule(const Deconvolver& d, const Eigen::VectorXd& b, ParameterRule rule,
-                                   double noise_level, double safety, const Seminorm& lcurve_seminorm = {});
+                                   double noise_level, double safety, const Seminorm& lcurve_seminorm = {},
+                                   const std::string& parameter_name = "parameter");
 
 // Index of the L-curve corner among points, most regularized first (see the .cpp); -1 if there are none.
 int lcurve_corner(const std::vector<RecordedPoint>& points);

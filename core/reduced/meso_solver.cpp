@@ -24,11 +24,14 @@ void ParameterChoiceRecord::add(const DeconvolutionStats& stats) {
   last = p;
   min = std::min(min, p);
   max = std::max(max, p);
+  if (!stats.note.empty() && noted_solves++ == 0) first_note = stats.note;
 }
 
 json ParameterChoiceRecord::to_json() const {
-  return {{"rule", rule}, {"parameter", parameter_name}, {"solves", solves},
-          {"first", first}, {"last", last}, {"min", min}, {"max", max}};
+  json j = {{"rule", rule}, {"parameter", parameter_name}, {"solves", solves},
+            {"first", first}, {"last", last}, {"min", min}, {"max", max}};
+  if (noted_solves > 0) j["notes"] = {{"solves", noted_solves}, {"first", first_note}};
+  return j;
 }
 
 void DeconvolutionIssues::count(const DeconvolutionResult& r) {

@@ -123,8 +123,10 @@ struct ParameterChoiceRecord {
   std::string rule, parameter_name;
   long solves = 0;
   double first = 0.0, last = 0.0, min = 0.0, max = 0.0;
+  long noted_solves = 0;   // solves whose choice lay at the edge of the rule's scan (DeconvolutionStats::note)
+  std::string first_note;  // the first one's note
   void add(const DeconvolutionStats& stats);  // ignores solves with rule fixed
-  json to_json() const;
+  json to_json() const;  // "notes" {solves, first} when a choice lay at the edge of the scan
 };
 
 // Deconvolutions that reported a numerical issue (e.g. a solution that fits the data no better than x = 0): a run

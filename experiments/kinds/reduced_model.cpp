@@ -112,6 +112,14 @@ class ReducedModel : public ExperimentKind {
       const long rows = disc == Discretization::fine_fine ? grid.fine.count : grid.data.count;
       const long cols = disc == Discretization::coarse_coarse ? grid.data.count : grid.fine.count;
       check_operator_shape(out["closure"], rows, cols, path);
+      // k is used with rule fixed, and as pass 1 of the two-pass rule (a rule under an implicit integrator).
+      const json& deconvolver = out["closure"]["deconvolver"];
+      const bool fixed = deconvolver.value("rule", "fixed") == "fixed";
+      if (fixed || make_integrator(reg, out["solver"], path)->needs_affine_rate())
+        check_truncation_rank(deconvolver, rows, cols,
+                              "data x unknowns of the " + out["closure"]["discretization"].get<std::string>() +
+                                  " discretization",
+                              !fixed, path);
     }
     return out;
   }

@@ -104,6 +104,15 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     try {
       check_force_density_2d(*scene, *kernel, options(out));
       check_force_density_closure(out["closure"]["deconvolver"], "");
+      // The operators are at most coarse nodes x reconstruction nodes (the free rows, the velocity's columns the
+      // nodes some fluid particle reads); a rule's pass 1 runs at the configured k too.
+      const ForceDensity2DOptions o = options(out);
+      const TensorMesh2D coarse = force_density_coarse_mesh(*scene, *kernel, o.spacing_over_eta);
+      const TensorMesh2D recon =
+          force_density_reconstruction_mesh(*scene, coarse, o.reconstruction_refinement, o.reconstruction_y_nodes);
+      check_truncation_rank(out["closure"]["deconvolver"], static_cast<long>(coarse.size()), static_cast<long>(recon.size()),
+                            "coarse nodes x reconstruction nodes", out["closure"]["deconvolver"].value("rule", "fixed") != "fixed",
+                            "");
     } catch (const ConfigError& e) {
       throw ConfigError(path + e.path(), e.message());
     }

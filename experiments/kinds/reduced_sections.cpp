@@ -37,6 +37,20 @@ void check_operator_shape(const json& closure, long rows, long cols, const std::
                         " x " + std::to_string(cols) + " (data x unknowns), not square: " + needs);
 }
 
+void check_truncation_rank(const json& resolved_deconvolver, long rows, long cols, const std::string& shape,
+                           bool under_rule, const std::string& path) {
+  const json& d = resolved_deconvolver;
+  if (d.value("name", "") != "tsvd" || d.value("truncation", "index") != "index" || !d.contains("k")) return;
+  const long k = d.at("k").get<long>(), most = std::min(rows, cols);
+  if (k <= most) return;
+  throw ConfigError(path + "/closure/deconvolver/k",
+                    "tsvd keeps k = " + std::to_string(k) + " singular values, above the rank of the closure's operator: it is " +
+                        std::to_string(rows) + " x " + std::to_string(cols) + " at most (" + shape +
+                        "), so it has at most " + std::to_string(most) + " singular values; use k <= " +
+                        std::to_string(most) +
+                        (under_rule ? " (pass 1 of the two-pass rule runs at the configured k)" : ""));
+}
+
 ParamSchema reference_schema() {
   return {bool_param("direct_sph", true, "run the direct SPH of the same scene as a reference (and for the speed-up)"),
           object_param("solver", json::object(), "direct SPH solver parameters (as in direct_sph_validation)"),
@@ -181,6 +195,7 @@ json choose_parameter_once(const Registry& registry, const json& configured, con
   into["chosen"] = fixed.at(name);
   into["rule_status"] = row_status(c.status);
   into["rule_message"] = c.stats.message;
+  if (!c.stats.note.empty()) into["rule_note"] = c.stats.note;
   return fixed;
 }
 
@@ -192,6 +207,27 @@ void finish_reduced_row(json& row, json errors, json cost, const RepeatedReduced
   row["errors"] = std::move(errors);
   row["cost"] = std::move(cost);
   propagate_worst_status(row, deconvolution_issues, direct_run);
+  add_rule_notes(row);
+}
+
+void add_rule_notes(json& row) {
+  if (!row.contains("reduced_model") || !row.at("reduced_model").is_object()) return;
+  const json& run = row.at("reduced_model");
+  std::string note;
+  auto append = [&note](const std::string& s) { note += (note.empty() ? "" : "; ") + s; };
+  if (run.contains("parameter_choice") && run.at("parameter_choice").contains("notes")) {
+    const json& n = run.at("parameter_choice").at("notes");
+    append("the closure's parameter rule chose at the edge of its scan in " +
+           std::to_string(n.at("solves").get<long>()) + " solve(s); the first: " + n.at("first").get<std::string>());
+  }
+  if (run.contains("two_pass_rule")) {
+    const json& t = run.at("two_pass_rule");
+    if (t.contains("rule_note")) append("the two-pass rule: " + t.at("rule_note").get<std::string>());
+    for (const char* what : {"velocity", "density"})
+      if (t.contains(what) && t.at(what).contains("rule_note"))
+        append(std::string("the two-pass rule (") + what + "): " + t.at(what).at("rule_note").get<std::string>());
+  }
+  if (!note.empty()) row["note"] = note;
 }
 
 void propagate_worst_status(json& row, const DeconvolutionIssues& deconvolution_issues, const json* direct_run) {

@@ -44,6 +44,13 @@ json upgraded_reduced_params(json params);
 // ConfigError at `path`/closure/discretization at validation (it failed only at run time, "got 11x20").
 void check_operator_shape(const json& closure, long rows, long cols, const std::string& path);
 
+// TSVD by a truncation index k (`resolved_deconvolver`) on an operator of at most `rows` x `cols` (`shape` names
+// them, e.g. "coarse nodes x reconstruction nodes"): a k above min(rows, cols), the most singular values it can
+// have, is a ConfigError at `path`/closure/deconvolver/k at validation (it failed only when the cell ran).
+// `under_rule`: the deconvolver has a rule and runs at k as pass 1 of the two-pass rule (said in the message).
+void check_truncation_rank(const json& resolved_deconvolver, long rows, long cols, const std::string& shape,
+                           bool under_rule, const std::string& path);
+
 // "timing": how the reduced run is repeated (core/base/repeated_timing.hpp).
 ParamSchema reduced_timing_schema();
 
@@ -89,5 +96,9 @@ void finish_reduced_row(json& row, json errors, json cost, const RepeatedReduced
 // reference's (its record's "status": a reference that did not reach its steady state or target time makes the
 // errors against it measure another flow). Sets row["status"] and, when it changed, row["message"].
 void propagate_worst_status(json& row, const DeconvolutionIssues& deconvolution_issues, const json* direct_run);
+
+// A parameter rule's choice at the edge of its scan (DeconvolutionStats::note), in the reduced run's record
+// (reduced_model.parameter_choice.notes, reduced_model.two_pass_rule's rule_note) as row["note"]; the status stays.
+void add_rule_notes(json& row);
 
 }  // namespace closurelab

@@ -243,6 +243,7 @@ class SnapshotClosure : public ExperimentKind {
     }
     row["snapshot"] = {{"time", snapshot_time}, {"particles", ps.size()}, {"pairs", pairs}};
     row["deconvolution"] = r.to_json();
+    if (!r.stats.note.empty()) row["note"] = r.stats.note;  // the rule chose at the edge of its scan
     row["errors"] = {{"stress_xy", {{"channel", node_error_summary(t_closure, t_exact, channel, scale)},
                                     {"interior", node_error_summary(t_closure, t_exact, interior, scale)},
                                     {"wall_band", node_error_summary(t_closure, t_exact, band, scale)},

@@ -143,6 +143,7 @@ int run_deconvolve_command(int argc, char** argv, const Registry& registry) {
       std::cerr << "error: cannot write the result to standard output: " << std::strerror(errno) << "\n";
       return 1;
     }
+    if (!r.stats.note.empty()) std::cerr << "warning: " << r.stats.note << "\n";  // also in stats.note
     if (r.status == DeconvolutionStatus::numerical_issue) {
       std::cerr << "error: numerical failure: " << r.stats.message << "\n";
       return 1;  // the result is printed, but it is not a solution

@@ -74,6 +74,7 @@ json run_stability_case(const IllPosedProblem& p, const StabilityCaseInput& in, 
   json row = r.to_json();
   row["status"] = status;
   row["deconvolution_status"] = to_string(r.status);
+  if (!r.stats.note.empty()) row["note"] = r.stats.note;  // the rule chose at the edge of its scan
   row["errors"] = errors;
   row["all_finite"] = all_finite;
   row["method_resolved"] = resolved;

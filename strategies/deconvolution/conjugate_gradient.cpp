@@ -42,6 +42,10 @@ class KrylovBase : public DeconvolverBase {
   void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const override {
     run(b, max_iterations_, -1.0, visit);  // tolerance < 0: a scan
   }
+  std::string scan_hint() const override {
+    return "the rules scan the iterations up to max_iterations, or until the residual has not improved for patience "
+           "iterations";
+  }
   // Scans only: CG's residual is not monotone; once it has not improved on its minimum for `patience`
   // iterations the semi-convergence is over and the scan ends (the rules then fall back to that minimum).
   bool stalled(double rnorm, double& min_rnorm, int& since) const {

@@ -63,8 +63,10 @@ class DeconvolverBase : public Deconvolver {
       r = solve_fixed(m == 0 ? b : times_power_of_two(b, -m));
       unscale(r, m);
     } else {
-      r = choose_by_rule(*this, b, rule_.rule, noise_level, rule_.safety,
-                         lcurve_seminorm());  // through scan(): already unscaled
+      r = choose_by_rule(*this, b, rule_.rule, noise_level, rule_.safety, lcurve_seminorm(),
+                         parameter_name_);  // through scan(): already unscaled
+      const std::string hint = scan_hint();
+      if (!r.stats.note.empty() && !hint.empty()) r.stats.note += " (" + hint + ")";
     }
     finish_solve(r, b, noise_level, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     return r;
@@ -182,6 +184,8 @@ class DeconvolverBase : public Deconvolver {
   virtual Seminorm lcurve_seminorm() const { return {}; }
   // Why a solution may fit no better than x = 0 with this method (appended to that message).
   virtual std::string no_fit_hint() const { return ""; }
+  // Which parameters bound the rules' scan (appended to the note of a choice at its edge).
+  virtual std::string scan_hint() const { return ""; }
   // Fills the norms of a fixed-parameter result from its x (one more product with A).
   void finish_fixed(DeconvolutionResult& r, const Eigen::VectorXd& b, double parameter) const {
     r.stats.residual_norm = robust_norm(b - a_->apply(r.x));

@@ -59,6 +59,7 @@ class LandweberRelaxed : public DeconvolverBase {
   }
 
   void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const override { run(b, max_iterations_, visit); }
+  std::string scan_hint() const override { return "the rules scan the iterations up to max_iterations"; }
 
  private:
   void run(const Eigen::VectorXd& b, int count, const ScanVisitor& visit) const {

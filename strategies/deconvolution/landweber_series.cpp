@@ -80,6 +80,7 @@ class LandweberSeries : public DeconvolverBase {
   }
 
   void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const override { do_scan_to(b, max_order_, visit); }
+  std::string scan_hint() const override { return "the rules scan the orders up to max_order"; }
 
  private:
   void do_scan_to(const Eigen::VectorXd& b, int max_order, const ScanVisitor& visit) const {

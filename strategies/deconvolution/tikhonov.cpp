@@ -182,6 +182,9 @@ class Tikhonov : public DeconvolverBase {
     if (order_ == 0) return {};
     return [this](const Eigen::VectorXd& x) { return robust_norm(l_ * x); };
   }
+  std::string scan_hint() const override {
+    return "the rules scan alpha from alpha_min to alpha_max, relative to ||A||^2: lower alpha_min or raise alpha_max";
+  }
   double unscale_parameter(double alpha) const override {
     return std::ldexp(alpha, (paper_ ? 1 : 2) * scale_exponent());
   }

@@ -52,6 +52,9 @@ class TruncatedSvd : public DeconvolverBase {
     return r;
   }
 
+  std::string scan_hint() const override {
+    return "the rules scan k from 1 to max_rank or the numerical rank, whichever is smaller";
+  }
   void do_scan(const Eigen::VectorXd& b, const ScanVisitor& visit) const override {
     const Eigen::VectorXd beta = basis_.coefficients(b);
     const int n = static_cast<int>(basis_.order().size());

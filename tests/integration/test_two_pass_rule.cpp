@@ -46,11 +46,31 @@ TEST(TwoPassRule, GcvUnderBackwardEulerChoosesOnceAndTheSecondPassIsTheFixedRun)
   const double alpha = choice.at("chosen").get<double>();
   ASSERT_TRUE(std::isfinite(alpha) && alpha > 0.0) << alpha;
   EXPECT_NE(alpha, choice.at("pass_1_parameter").get<double>());  // the rule moved it from the configured 1e-6
+  EXPECT_FALSE(choice.contains("rule_note")) << choice.at("rule_note");  // chosen inside its scan
+  EXPECT_FALSE(rule.contains("note")) << rule.at("note");
 
   const json fixed = run_one("two_pass_fixed", near_wall_channel({{"name", "tikhonov"}, {"alpha", alpha}}));
   ASSERT_EQ(fixed.value("status", ""), "ok");
   EXPECT_FALSE(fixed.at("reduced_model").contains("two_pass_rule"));
   EXPECT_EQ(rule.at("profile").at("reduced"), fixed.at("profile").at("reduced"));
+}
+
+TEST(TwoPassRule, AChoiceAtTheEdgeOfTheScanIsNotedInTheRow) {
+  // A scan of [0.1, 1] ||A||^2 lies far above GCV's choice on smooth steady data: it chooses the least regularized
+  // member, alpha_min; the row stays ok and says so in its note.
+  const json row = run_one("two_pass_gcv_edge",
+                           near_wall_channel({{"name", "tikhonov"}, {"rule", "gcv"}, {"alpha_min", 0.1},
+                                              {"alpha_max", 1.0}, {"alpha_count", 3}}));
+  ASSERT_EQ(row.value("status", ""), "ok") << row.dump(1).substr(0, 1500);
+  const json& choice = row.at("reduced_model").at("two_pass_rule");
+  EXPECT_EQ(choice.at("rule_status"), "ok");
+  ASSERT_TRUE(choice.contains("rule_note")) << choice.dump(1);
+  const std::string note = choice.at("rule_note").get<std::string>();
+  EXPECT_NE(note.find("at the edge of its scan"), std::string::npos) << note;
+  EXPECT_NE(note.find("(the least regularized member scanned)"), std::string::npos) << note;
+  EXPECT_NE(note.find("widen the scan"), std::string::npos) << note;
+  ASSERT_TRUE(row.contains("note")) << row.dump(1).substr(0, 1500);
+  EXPECT_EQ(row.at("note").get<std::string>(), "the two-pass rule: " + note);
 }
 
 TEST(TwoPassRule, KrylovClosuresStayRefusedUnderBackwardEuler) {

@@ -9,6 +9,7 @@
 #include "core/base/memory_limit.hpp"
 #include "core/base/numpy_uniform.hpp"
 #include "core/scenes/layered_scene.hpp"
+#include "core/scenes/cavity_scene.hpp"
 #include "core/scenes/taylor_green_scene.hpp"
 #include "core/scenes/wall_rows.hpp"
 #include "core/base/registry.hpp"
@@ -34,10 +35,11 @@ ParticleSystem Scene::make_particles() const {
     for (std::size_t a = 0; a < ps.size(); ++a) ps.x[a] += uniform.next() * shift;
     for (std::size_t a = 0; a < ps.size(); ++a) ps.y[a] += uniform.next() * shift;
   }
-  if (initial_velocity)
+  if (initial_velocity || solid_velocity)
     for (std::size_t a = 0; a < ps.size(); ++a) {
-      if (ps.fixed[a]) continue;
-      const Vec2 v = initial_velocity(ps.x[a], ps.y[a]);
+      const auto& velocity = ps.fixed[a] ? solid_velocity : initial_velocity;
+      if (!velocity) continue;
+      const Vec2 v = velocity(ps.x[a], ps.y[a]);
       ps.vx[a] = v.x();
       ps.vy[a] = v.y();
     }
@@ -223,6 +225,7 @@ void register_scenes(Registry& r) {
   register_cylinder_lattice_scene(r);
   register_cylinder_channel_scene(r);
   register_taylor_green_scene(r);
+  register_cavity_scene(r);
   r.scenes.add({"poiseuille-uniform", "Poiseuille flow between walls at 3 eta' and L_y - 3 eta', uniform force (par. 5)",
                 channel_schema()},
                [](const json& p) {

@@ -18,7 +18,7 @@ struct PeriodicBox {
 struct ParticleSystem {
   std::vector<double> x, y, vx, vy, mass;
   std::vector<int> phase;
-  std::vector<std::uint8_t> fixed;  // 1: held at zero velocity (wall particles, (5.3))
+  std::vector<std::uint8_t> fixed;  // 1: held in place at its prescribed velocity (wall particles, (5.3); 0 unless a lid)
 
   std::size_t size() const { return x.size(); }
   void add(double px, double py, double m, int ph, bool is_fixed) {

@@ -48,6 +48,13 @@ struct Scene {
   // (negative in the fluid): the d_wall and −d_fluid of a fluid–solid pair. Empty: the model's distances are to the
   // walls in y, and the solids of solid_at are held at zero velocity whatever the model.
   std::function<double(double x, double y)> solid_depth;
+  // The prescribed velocity of the fixed particles at their sites (a moving wall: the cavity's lid), set by
+  // make_particles(); empty: at rest. The walls of either formulation move with it (the zero-velocity model's
+  // wall particles carry it in the pair forces, the transport-velocity condition's ghost velocity is 2 v_w − ṽ_w).
+  std::function<Vec2(double x, double y)> solid_velocity;
+  // The scene is meant for the transport-velocity formulation only (the lid-driven cavity): the standard one is
+  // refused at validation (check_direct_run).
+  bool needs_transport_velocity = false;
   WallModel wall_model = WallModel::zero_velocity;
   double ghost_beta_max = 0.0;
 
@@ -138,6 +145,14 @@ struct Scene {
     double max_speed(double t) const { return factor(t); }
   };
   std::optional<TaylorGreenVortex> taylor_green;
+  // The lid-driven cavity (core/scenes/cavity_scene.cpp; PySPH's cavity.py): the fluid fills the square
+  // [origin, origin + side]² inside walls on all four sides, the top wall (y > origin + side) slides along x at the
+  // lid speed; Re = lid speed × side / ν. Its reference is the steady centre-line profiles of Ghia, Ghia & Shin
+  // (1982) (experiments/kinds/cavity_validation.cpp).
+  struct LidDrivenCavity {
+    double side = 1.0, origin = 0.0, lid_speed = 1.0, reynolds = 100.0;
+  };
+  std::optional<LidDrivenCavity> cavity;
   // Flow through a porous medium (cylinder-lattice; core/scenes/cylinder_lattice_scene.hpp): the number wanted is
   // the Darcy permeability k = μ ⟨u_x⟩ / (ρ g), ⟨u_x⟩ the x-velocity averaged over the whole periodic cell (the
   // solid counting zero) and g the body force per unit mass on the fluid; the scene states its reference value.

@@ -1,7 +1,6 @@
 // The direct SPH engine: its state, the list upkeep (search and rebuild test), the per-particle steps of the
-// two pair passes and the integrator; the pair loops themselves are in sph_pair_passes.hpp. Above the 320-line
-// guide since the transport-velocity formulation's passes and step joined the standard ones (from
-// prepare_transport_inputs on); they belong in a file of their own (sph_engine_transport.cpp), not yet split.
+// two pair passes and the integrator; the pair loops themselves are in sph_pair_passes.hpp, the transport-velocity
+// formulation's passes and step in sph_engine_transport.cpp.
 #include "core/sph/sph_engine.hpp"
 
 #include <omp.h>
@@ -20,11 +19,9 @@ SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles, const SphEng
     : scene_(scene), ps_(particles), options_(options), w_(scene.smoothing_kernel()) {
   transport_ = options_.formulation == SphFormulation::transport_velocity;
   if (transport_) {
-    for (std::uint8_t f : ps_.fixed)
-      if (f)
-        throw std::invalid_argument(
-            "the transport-velocity formulation needs the generalized wall condition for walls and solids, not built "
-            "yet: scene '" + scene.name + "' has fixed particles");
+    if (scene.wall_model == WallModel::ghost_velocity)
+      throw std::invalid_argument("the transport-velocity formulation has its own wall condition (Adami, Hu & Adams "
+                                  "2012): scene '" + scene.name + "' asks for ghost-velocity walls");
     if (!(options_.transport_background_pressure_factor > 0.0))
       throw std::invalid_argument("the transport velocity's background pressure must be positive");
   }
@@ -90,6 +87,7 @@ SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles, const SphEng
     transport_eps_ = 0.01 * w_.h() * w_.h();  // PySPH's EPS = 0.01 HIJ²
     background_pressure_ = options_.transport_background_pressure_factor * scene.rho0 * scene.sound_speed * scene.sound_speed;
     tvf_input_.assign(n, TvfParticle{});
+    transport_walls_ = !walls.empty();
     bx_.assign(n, 0.0);
     by_.assign(n, 0.0);
   }
@@ -121,6 +119,11 @@ void SphEngine::rebuild_pairs_if_needed() {
   pair_dx_.resize(list_.pairs.size());
   pair_dy_.resize(list_.pairs.size());
   pair_f_.resize(list_.pairs.size());
+  if (transport_walls_) {
+    wall_pairs_.clear();
+    for (std::size_t p = 0; p < list_.pairs.size(); ++p)
+      if (fixed[list_.pairs.i[p]] != fixed[list_.pairs.j[p]]) wall_pairs_.push_back(p);
+  }
   built_ = true;
   ++list_rebuilds_;
 }
@@ -324,7 +327,10 @@ double SphEngine::time_step(double kappa) const {
 
 std::vector<PairForce> SphEngine::pair_forces() {
   compute_density();
-  if (transport_) prepare_transport_inputs();
+  if (transport_) {
+    prepare_transport_inputs();
+    apply_transport_wall_condition();
+  }
   std::vector<PairForce> out;
   out.reserve(list_.pairs.size());
   for (std::size_t r = 0; r < list_.row_i.size(); ++r) {
@@ -335,8 +341,7 @@ std::vector<PairForce> SphEngine::pair_forces() {
       const Vec2 q_ij(pair_dx_[p], pair_dy_[p]);
       if (transport_) {  // the momentum force of the transport-velocity formulation (its background part aside)
         double fx, fy, bx, by;
-        tvf_pair_force(tvf_input_[i], tvf_input_[j], pair_f_[p], pair_dx_[p], pair_dy_[p], transport_eps_,
-                       background_pressure_, fx, fy, bx, by);
+        transport_pair_terms(i, j, p, fx, fy, bx, by);
         out.push_back({i, j, -q_ij, Vec2(fx, fy)});
         continue;
       }
@@ -345,97 +350,6 @@ std::vector<PairForce> SphEngine::pair_forces() {
     }
   }
   return out;
-}
-
-// The transport-velocity formulation (core/sph/transport_velocity.hpp).
-
-void SphEngine::prepare_transport_inputs() {
-  if (tvx_.empty()) {  // ṽ = v at the first evaluation
-    tvx_ = ps_.vx;
-    tvy_ = ps_.vy;
-  }
-  const std::size_t na = active_.size();
-  const double rho0 = scene_.rho0;
-#pragma omp parallel for num_threads(static_cast <int>(thread_buf_.size())) schedule(static)
-  for (std::size_t k = 0; k < na; ++k) {
-    const int a = active_[k];
-    tvf_input_[a] = tvf_particle(n_[a], ps_.mass[a], pressure(a), mu_[a] / rho0, ps_.vx[a], ps_.vy[a], tvx_[a], tvy_[a]);
-  }
-}
-
-void SphEngine::compute_transport_accelerations() {
-  compute_density();
-  prepare_transport_inputs();
-  const std::size_t n = ps_.size(), m = moving_.size();
-  const PairBlocks g = blocks();
-  const std::size_t nb = list_.block_row.size() - 1;
-  const double *F = pair_f_.data(), *qx = pair_dx_.data(), *qy = pair_dy_.data();
-  const TvfParticle* in = tvf_input_.data();
-  const double eps = transport_eps_, pb = background_pressure_;
-#pragma omp parallel num_threads(static_cast <int>(thread_buf_.size()))
-  {
-    const std::size_t t = omp_get_thread_num(), nt = omp_get_num_threads();
-    auto& buf = thread_buf_[t];
-    std::fill(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(4 * n), 0.0);
-    const std::size_t r0 = list_.block_row[nb * t / nt], r1 = list_.block_row[nb * (t + 1) / nt];
-    pair_passes::force_rows_with_background(
-        g, r0, r1, F,
-        [&](int i, int j, std::size_t p, double& fx, double& fy, double& bx, double& by) {
-          tvf_pair_force(in[i], in[j], F[p], qx[p], qy[p], eps, pb, fx, fy, bx, by);
-        },
-        buf.data());
-#pragma omp barrier
-#pragma omp for schedule(static)
-    for (std::size_t k = 0; k < m; ++k) {
-      const int a = moving_[k];
-      double fx = 0.0, fy = 0.0, tx = 0.0, ty = 0.0;
-      for (std::size_t u = 0; u < nt; ++u) {
-        const double* f = thread_buf_[u].data() + 4 * a;
-        fx += f[0], fy += f[1], tx += f[2], ty += f[3];
-      }
-      ax_[a] = fx / ps_.mass[a];
-      ay_[a] = fy / ps_.mass[a];
-      bx_[a] = tx / ps_.mass[a];
-      by_[a] = ty / ps_.mass[a];
-      if (scene_.body_force) {  // MomentumEquationPressureGradient.post_loop adds the body force to au only
-        const Vec2 b = scene_.body_force(ps_.x[a], ps_.y[a]);
-        ax_[a] += b.x();
-        ay_[a] += b.y();
-      } else {
-        ax_[a] += scene_.force_x(ps_.y[a]);
-      }
-    }
-  }
-}
-
-void SphEngine::transport_step(double dt) {
-  if (!built_) compute_accelerations();
-  const std::size_t m = moving_.size();
-  const PeriodicBox& box = scene_.box;
-  const double dtb2 = 0.5 * dt;
-  // TransportVelocityStep.stage1: v += ½Δt a (eq. 14); ṽ = v + ½Δt â (eq. 15); x += Δt ṽ (eq. 16).
-#pragma omp parallel for num_threads(static_cast <int>(thread_buf_.size())) schedule(static)
-  for (std::size_t k = 0; k < m; ++k) {
-    const int a = moving_[k];
-    ps_.vx[a] += dtb2 * ax_[a];
-    ps_.vy[a] += dtb2 * ay_[a];
-    tvx_[a] = ps_.vx[a] + dtb2 * bx_[a];
-    tvy_[a] = ps_.vy[a] + dtb2 * by_[a];
-    double x = ps_.x[a] + dt * tvx_[a];
-    if (box.periodic_x) x -= box.lx * std::floor(x / box.lx);
-    double y = ps_.y[a] + dt * tvy_[a];
-    if (box.periodic_y) y -= box.ly * std::floor(y / box.ly);
-    ps_.x[a] = x;
-    ps_.y[a] = y;
-  }
-  compute_accelerations();
-  // stage2: v += ½Δt a (eq. 17).
-#pragma omp parallel for num_threads(static_cast <int>(thread_buf_.size())) schedule(static)
-  for (std::size_t k = 0; k < m; ++k) {
-    const int a = moving_[k];
-    ps_.vx[a] += dtb2 * ax_[a];
-    ps_.vy[a] += dtb2 * ay_[a];
-  }
 }
 
 }  // namespace closurelab

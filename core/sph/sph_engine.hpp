@@ -61,8 +61,8 @@ struct PairBlocks;  // the list's rows and blocks, as the pair passes read them 
 
 class SphEngine {
  public:
-  // Refuses (std::invalid_argument) the transport-velocity formulation where the particles include fixed ones
-  // (walls, solids): their generalized wall condition is not built yet.
+  // Refuses (std::invalid_argument) the transport-velocity formulation on a scene with ghost-velocity walls: that
+  // formulation's fixed particles (walls, solids) take the generalized wall condition (transport_velocity.hpp).
   SphEngine(const Scene& scene, ParticleSystem& particles, const SphEngineOptions& options = {});
 
   // Number densities and accelerations at the current positions and velocities.
@@ -112,6 +112,13 @@ class SphEngine {
   // Transport velocity: the per-particle inputs of its pair pass at the current densities (ṽ = v at the first
   // call), its force pass and step.
   void prepare_transport_inputs();
+  // The generalized wall condition: each wall particle's extrapolated pressure, density and ghost velocity from its
+  // fluid neighbours (transport_velocity.hpp), into its tvf_input_.
+  void apply_transport_wall_condition();
+  // m × the acceleration of listed pair p = (i, j)'s particle i due to j (fluid–fluid, or fluid–wall with either
+  // first), its background part apart.
+  void transport_pair_terms(std::int32_t i, std::int32_t j, std::size_t p, double& fx, double& fy, double& bx,
+                            double& by) const;
   void compute_transport_accelerations();
   void transport_step(double dt);
 
@@ -122,6 +129,9 @@ class SphEngine {
   double transport_eps_ = 0.0;      // ε = 0.01 h² of the viscous term
   double background_pressure_ = 0.0;  // p_b
   std::vector<TvfParticle> tvf_input_;
+  std::vector<std::size_t> wall_pairs_;  // the listed fluid–wall pairs (transport velocity with fixed particles)
+  bool transport_walls_ = false;         // transport velocity and some fixed particle
+  std::vector<double> wall_sum_w_, wall_sum_vx_, wall_sum_vy_, wall_sum_p_;  // the wall condition's sums
   std::vector<double> tvx_, tvy_, bx_, by_;
   SmoothingKernel w_;
   double skin_, mass_, viscous_stiffening_ = 1.0;

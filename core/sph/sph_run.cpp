@@ -169,9 +169,14 @@ void check_stepped_run(const Scene& scene, const json& s, double spacing, double
 
 void check_direct_run(const Scene& scene, const json& s, const std::string& path) {
   const SphFormulation formulation = formulation_of(s, path);
-  if (formulation == SphFormulation::transport_velocity && (scene.has_walls || scene.solid_at))
-    throw ConfigError(path + "/formulation", "transport_velocity needs the generalized wall condition for the walls "
-                                             "and solids of scene '" + scene.name + "', not built yet");
+  if (formulation == SphFormulation::transport_velocity && scene.wall_model == WallModel::ghost_velocity)
+    throw ConfigError(path + "/formulation", "transport_velocity has its own wall condition (Adami, Hu & Adams 2012); "
+                                             "scene '" + scene.name + "' asks for ghost-velocity walls: set the "
+                                             "scene's wall_model to zero_velocity");
+  if (formulation != SphFormulation::transport_velocity && scene.needs_transport_velocity)
+    throw ConfigError(path + "/formulation", "scene '" + scene.name + "' is meant for the transport-velocity "
+                                             "formulation (its particles travel): set formulation to "
+                                             "transport_velocity");
   check_stepped_run(scene, s, scene.dx, direct_step_bound(scene, s.at("kappa").get<double>(), formulation), path);
 }
 

@@ -65,9 +65,9 @@ double steady_reach_spacings(const Scene& scene, double spacing);
 // (check_steady_reach across steady_reach_spacings, where the scene states its relaxation).
 void check_stepped_run(const Scene& scene, const json& resolved_solver, double spacing, double max_dt,
                        const std::string& path);
-// check_stepped_run for the direct SPH: spacing dx, steps of at most direct_step_bound. The transport-velocity
-// formulation on a scene with walls or solids is refused (ConfigError at `path`/formulation): their generalized
-// wall condition is not built yet.
+// check_stepped_run for the direct SPH: spacing dx, steps of at most direct_step_bound. Refused (ConfigError at
+// `path`/formulation): the transport-velocity formulation on ghost-velocity walls (it has its own wall condition),
+// and the standard one on a scene that needs_transport_velocity.
 void check_direct_run(const Scene& scene, const json& resolved_solver, const std::string& path);
 
 }  // namespace closurelab

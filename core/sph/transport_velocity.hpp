@@ -24,8 +24,18 @@
 // listed pair once and gives −f to b, as for (5.1); PySPH sums each particle's neighbours itself (the same sums in
 // another order: round-off). The transport velocity ṽ is engine state, equal to v at the first evaluation (PySPH's
 // taylor_green.py leaves uhat = 0 there, so that its first evaluation carries A = −ρ v ⊗ v: a peer run sets
-// uhat = u at t = 0). Walls and solids need the generalized wall condition (Adami, Hu & Adams 2012), not built
-// yet: the engine refuses fixed particles under this formulation.
+// uhat = u at t = 0).
+//
+// Walls and solids (fixed particles): the generalized wall condition of Adami, Hu & Adams, J. Comput. Phys. 231
+// (2012) 7057–7075, as PySPH's TVFScheme applies it to its solid arrays (pysph/sph/wc/transport_velocity.py):
+//   SetWallVelocity      ṽ_w = Σ_f v_f W_wf / Σ_f W_wf (fluid neighbours f; 0 where Σ_f W_wf <= 1e-12), and the
+//                        ghost velocity v_g = 2 v_w − ṽ_w, v_w the wall's prescribed velocity (eqs. 22–23)
+//   SolidWallPressureBC  p_w = Σ_f (p_f + ρ_f (g − a_w) · (x_w − x_f)) W_wf / Σ_f W_wf (eq. 27; a_w = 0: walls are
+//                        fixed), ρ_w = ρ0 ((p_w − X) / p0 + 1), p0 = ρ0 c² (eq. 28 with b = 1)
+//   a wall's volume      V_w = ε'² (PySPH's examples set solid.V = 1/dx² and never update it)
+//   fluid–wall pair      the pressure and background terms above with the wall's ρ_w, p_w, V_w; the viscous term
+//                        with the ghost velocity v_g in v_ab (SolidWallNoSlipBC); no extra-stress term
+//                        (MomentumEquationArtificialStress sums fluid neighbours only).
 #include <array>
 #include <string_view>
 #include <utility>
@@ -73,6 +83,9 @@ inline TvfParticle tvf_particle(double n, double m, double p, double nu, double 
 // background pressure pb: (fx, fy) = m_a × a's acceleration due to b (pressure, viscosity, extra stress), (bx, by) =
 // m_a × the background pressure's part of a's transport acceleration. Each term is written in the order of its
 // PySPH equation (named at each).
+// With extra_stress = false, the fluid–wall pair of the generalized wall condition (a the fluid particle, b the
+// wall particle carrying its ρ_w, p_w, V_w² and, as its velocity, the ghost velocity v_g).
+template <bool extra_stress = true>
 inline void tvf_pair_force(const TvfParticle& a, const TvfParticle& b, double F, double qx, double qy, double eps,
                            double pb, double& fx, double& fy, double& bx, double& by) {
   const double gx = F * qx, gy = F * qy;  // DWIJ
@@ -93,10 +106,12 @@ inline void tvf_pair_force(const TvfParticle& a, const TvfParticle& b, double F,
     fy += tmp * (a.vy - b.vy);
   }
   // MomentumEquationArtificialStress: Ax = ½ ((Axxi + Axxj) DWIJ[0] + (Axyi + Axyj) DWIJ[1]), tmp (Vi2 + Vj2) Ax.
-  const double sx = 0.5 * ((a.axx + b.axx) * gx + (a.axy + b.axy) * gy);
-  const double sy = 0.5 * ((a.ayx + b.ayx) * gx + (a.ayy + b.ayy) * gy);
-  fx += vol * sx;
-  fy += vol * sy;
+  if constexpr (extra_stress) {
+    const double sx = 0.5 * ((a.axx + b.axx) * gx + (a.axy + b.axy) * gy);
+    const double sy = 0.5 * ((a.ayx + b.ayx) * gx + (a.ayy + b.ayy) * gy);
+    fx += vol * sx;
+    fy += vol * sy;
+  }
   // MomentumEquationPressureGradient's background part (eq. 13): tmp = -pb (Vi2 + Vj2).
   tmp = -pb * vol;
   bx = tmp * gx;

@@ -6,7 +6,8 @@
 // final interface check (particles outside their phase region, row displacements, densities). Cellular
 // scenes (not x-invariant) are compared in 2D instead (experiments/kinds/cellular_validation.cpp), porous-medium
 // scenes by their permeability (experiments/kinds/permeability_validation.cpp), the Taylor-Green vortex by the decay
-// of its largest speed (experiments/kinds/taylor_green_validation.cpp).
+// of its largest speed (experiments/kinds/taylor_green_validation.cpp), the lid-driven cavity by its centre lines
+// against Ghia's (experiments/kinds/cavity_validation.cpp).
 #include "experiments/kinds/sph_validation.hpp"
 
 #include <Eigen/Dense>
@@ -24,7 +25,9 @@
 #include "experiments/kinds/cellular_validation.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/permeability_validation.hpp"
+#include "experiments/kinds/cavity_validation.hpp"
 #include "experiments/kinds/taylor_green_validation.hpp"
+#include "core/scenes/ghia_cavity.hpp"
 #include "experiments/runner/provenance.hpp"
 
 namespace closurelab {
@@ -146,12 +149,18 @@ class SphValidation : public ExperimentKind {
     check_keys(cell, path, {"scene", "kernel", "solver", "averaging"});
     json out;
     auto scene = build_scene(cell, path, reg, &out["scene"]);
-    if (!scene->analytic_vx && !scene->cellular_mode && !scene->permeability && !scene->taylor_green)
+    if (!scene->analytic_vx && !scene->cellular_mode && !scene->permeability && !scene->taylor_green && !scene->cavity)
       throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution or reference");
+    if (scene->cavity && !ghia_centrelines(scene->cavity->reynolds))
+      throw ConfigError(path + "/scene/re", "the cavity's reference (Ghia, Ghia & Shin 1982) is tabulated at Re = 100, "
+                                            "400 and 1000 only");
     build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["solver"] = resolve_section(cell, "solver", sph_solver_schema(), path);
     if (scene->taylor_green && out["solver"].at("mode") != "target_time")
       throw ConfigError(path + "/solver/mode", "the Taylor-Green vortex decays to rest: run it to a target_time");
+    if (scene->cavity && out["solver"].at("mode") != "target_time")
+      throw ConfigError(path + "/solver/mode", "the cavity is compared at the end of a target_time run (PySPH's "
+                                               "t = 10)");
     check_time_loop(out["solver"], path + "/solver");
     check_direct_run(*scene, out["solver"], path + "/solver");
     out["averaging"] = resolve_section(cell, "averaging", averaging_schema(), path);
@@ -170,6 +179,8 @@ class SphValidation : public ExperimentKind {
     }
     if (scene->taylor_green)  // the decay of the largest speed against the exact one, the particles stored at 20 times
       return run_taylor_green_validation(cfg, *scene, *kernel, spacing, progress);
+    if (scene->cavity)  // the centre lines against Ghia's, the particles stored at 20 times
+      return run_cavity_validation(cfg, *scene, *kernel, spacing, progress);
     if (scene->cellular_mode) {
       SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
       opt.progress = progress;

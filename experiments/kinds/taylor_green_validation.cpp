@@ -14,19 +14,12 @@
 
 namespace closurelab {
 
-std::vector<double> taylor_green_saved_times(double target_time) {
-  constexpr int kSnapshots = 20;
-  std::vector<double> times;
-  for (int k = 1; k <= kSnapshots; ++k) times.push_back(target_time * k / kSnapshots);
-  return times;
-}
-
 json run_taylor_green_validation(const json& cfg, const Scene& scene, const AveragingKernel& kernel,
                                  double observe_spacing, const std::function<void(const std::string&)>& progress) {
   const Scene::TaylorGreenVortex& tg = scene.taylor_green.value();
   const SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
   const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("solver"), observe_spacing,
-                                 taylor_green_saved_times(opt.target_time)};
+                                 transient_saved_times(opt.target_time)};
   const StoredReference direct = stored_direct_reference(request, scene, kernel, progress);
   const ParticleSystem& ps = direct.particles;
   const SphRunResult sph = SphRunResult::from_json(direct.run);
@@ -85,20 +78,7 @@ json run_taylor_green_validation(const json& cfg, const Scene& scene, const Aver
   errors["particles_vs_exact"] = particles_vs_field(
       ps, [&](double x, double y) { return tg.velocity_at(x, y, sph.time); }, tg.max_speed(sph.time));
   // The disorder: the spread of the summation number density at the end (on the lattice it is uniform).
-  ParticleSystem probe = ps;
-  SphEngine engine(scene, probe, opt.engine);
-  engine.compute_accelerations();
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0.0;
-  std::size_t moving = 0;
-  for (std::size_t a = 0; a < ps.size(); ++a) {
-    if (ps.fixed[a]) continue;
-    const double n = engine.number_density()[a];
-    lo = std::min(lo, n), hi = std::max(hi, n), sum += n;
-    ++moving;
-  }
-  const double mean = sum / static_cast<double>(moving);
-  errors["number_density"] = {{"spread_over_mean", (hi - lo) / mean},
-                              {"max_deviation_from_mean", std::max(hi - mean, mean - lo) / mean}};
+  errors["number_density"] = number_density_spread(scene, ps, opt.engine);
   row["errors"] = errors;
   row["cost"] = sph.cost_json(avg_seconds);
   row["cost"]["peak_memory_mib"] = peak_memory_mib();

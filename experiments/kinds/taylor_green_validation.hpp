@@ -14,11 +14,9 @@
 #include "core/base/params.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/sph_run.hpp"
+#include "experiments/kinds/validation_row.hpp"
 
 namespace closurelab {
-
-// The saved times: target_time k / 20, k = 1, ..., 20.
-std::vector<double> taylor_green_saved_times(double target_time);
 
 // Runs `scene` (which must declare taylor_green) to the solver's target_time through the reference store (the key:
 // the cell's scene, kernel and solver sections, `observe_spacing` (absolute) and the saved times) and returns the

@@ -44,7 +44,7 @@ TEST(TaylorGreenReference, TheValidationStoresItsParticlesAtTheSavedTimesAndReus
 
   const std::string file = (store / store_record.at("entry").get<std::string>() / "particles.h5part").string();
   const std::vector<ParticleSnapshot> steps = read_h5part_all(file);
-  const std::vector<double> saved = taylor_green_saved_times(0.1);
+  const std::vector<double> saved = transient_saved_times(0.1);
   ASSERT_EQ(saved.size(), 20u);
   ASSERT_EQ(steps.size(), saved.size() + 1);  // the saved times, then the final state
   const json& ms = first.at("errors").at("max_speed");

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <vector>
 
 #include "tests/support/cli_run.hpp"
@@ -143,6 +145,23 @@ void expect_file_row(const json& row, const std::string& file, const std::string
   EXPECT_TRUE(row.at("cost").at("speed_up").is_null());  // no direct run timed: no speed-up, not 0
   EXPECT_TRUE(row.at("cost").contains("speed_up_note"));
   EXPECT_FALSE(row.at("cost").contains("direct_sph_wall_seconds"));
+}
+
+std::vector<std::array<double, 4>> read_xyuv_rows(const std::string& file) {
+  std::vector<std::array<double, 4>> rows;
+  std::ifstream in(file);
+  EXPECT_TRUE(in) << file;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream row(line);
+    std::array<double, 4> r{};
+    if (!(row >> r[0] >> r[1] >> r[2] >> r[3])) {
+      ADD_FAILURE() << file << ": " << line;
+      return rows;
+    }
+    rows.push_back(r);
+  }
+  return rows;
 }
 
 }  // namespace closurelab::testing

@@ -1,10 +1,12 @@
 #pragma once
-// Shared by the reference.file tests (tests/peer/test_reduced_reference_file*.cpp): a particle snapshot written in
-// PySPH's HDF5 layout or as CSV, a recursive comparison of two rows' numbers, and a spec run (or refused) through the
-// command line.
+// Shared by the peer tests (tests/peer/): a particle snapshot written in PySPH's HDF5 layout or as CSV, a recursive
+// comparison of two rows' numbers, a spec run (or refused) through the command line, and PySPH's particles read
+// back from the committed text files of the peer scripts.
 #include <filesystem>
+#include <array>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/base/params.hpp"
 #include "core/io/particle_snapshot.hpp"
@@ -46,5 +48,9 @@ void expect_refused(const std::filesystem::path& work, const std::string& name, 
 // The row of a cell whose reference is `file`: the file's record (path, size, checksum, layout), no direct run's
 // record and no speed-up.
 void expect_file_row(const json& row, const std::string& file, const std::string& layout);
+
+// The rows `x y u v` of a committed peer file (tests/peer/data/*.txt; '#' lines skipped), in order; a failed
+// expectation, and what was read so far, on a missing file or a short row.
+std::vector<std::array<double, 4>> read_xyuv_rows(const std::string& file);
 
 }  // namespace closurelab::testing

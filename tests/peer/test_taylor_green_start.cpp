@@ -7,27 +7,20 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/base/registry.hpp"
 #include "core/sph/scene.hpp"
+#include "tests/peer/reference_file_support.hpp"
 
 using namespace closurelab;
 
 TEST(TaylorGreenPeerStart, PerturbedStartEqualsPySphsToRoundOff) {
-  std::ifstream in(std::string(CLOSURELAB_SOURCE_DIR) + "/tests/peer/data/taylor_green_start_pysph_n16_perturb0.3.txt");
-  ASSERT_TRUE(in);
   std::vector<double> x, y, u, v;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream row(line);
-    double a, b, c, d;
-    ASSERT_TRUE(row >> a >> b >> c >> d) << line;
-    x.push_back(a), y.push_back(b), u.push_back(c), v.push_back(d);
-  }
+  for (const auto& r : closurelab::testing::read_xyuv_rows(std::string(CLOSURELAB_SOURCE_DIR) +
+                                               "/tests/peer/data/taylor_green_start_pysph_n16_perturb0.3.txt"))
+    x.push_back(r[0]), y.push_back(r[1]), u.push_back(r[2]), v.push_back(r[3]);
   const auto scene = builtin_registry().scenes.create(
       {{"name", "taylor-green"}, {"n", 16}, {"perturbation", 0.3}, {"h_over_dx", 1.5}}, "/scene");
   const ParticleSystem ps = scene->make_particles();

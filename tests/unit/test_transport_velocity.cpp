@@ -192,22 +192,56 @@ TEST(TransportVelocity, ABackgroundPressureAtOrBelowZeroIsAConfigErrorAtItsPath)
             std::string::npos);
 }
 
-TEST(TransportVelocity, WallsAndSolidsAreRefusedUntilTheirWallConditionExists) {
-  const auto channel = builtin_registry().scenes.create({{"name", "poiseuille-uniform"}, {"n_y", 32}}, "/scene");
-  const json solver = resolve_params({{"formulation", "transport_velocity"}, {"mode", "target_time"}, {"target_time", 0.01}},
-                                     sph_solver_schema(), "/solver");
-  try {
-    check_direct_run(*channel, solver, "/solver");
-    FAIL() << "a walled scene was accepted";
-  } catch (const ConfigError& e) {
-    EXPECT_EQ(e.path(), "/solver/formulation") << e.what();
+// Refused at validation, at the solver's formulation: ghost-velocity walls under the transport velocity (it has its
+// own wall condition), and the standard formulation on the cavity (its scene needs the transport velocity). Walls
+// at zero velocity and the periodic Taylor–Green box are accepted.
+TEST(TransportVelocity, GhostWallsAndTheStandardCavityAreRefusedAtTheFormulation) {
+  const json tvf = resolve_params({{"formulation", "transport_velocity"}, {"mode", "target_time"}, {"target_time", 0.01}},
+                                  sph_solver_schema(), "/solver");
+  const json standard = resolve_params({{"mode", "target_time"}, {"target_time", 0.01}}, sph_solver_schema(), "/solver");
+  const auto ghost = builtin_registry().scenes.create(
+      {{"name", "poiseuille-uniform"}, {"n_y", 32}, {"wall_model", "ghost_velocity"}}, "/scene");
+  const auto cavity = builtin_registry().scenes.create({{"name", "lid-driven-cavity"}, {"n", 20}}, "/scene");
+  for (const auto& [scene, solver] : {std::pair{ghost.get(), &tvf}, std::pair{cavity.get(), &standard}}) {
+    try {
+      check_direct_run(*scene, *solver, "/solver");
+      FAIL() << scene->name << " accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(e.path(), "/solver/formulation") << e.what();
+    }
   }
-  ParticleSystem ps = channel->make_particles();
-  EXPECT_THROW(SphEngine(*channel, ps, SphEngineOptions{SphFormulation::transport_velocity, 1.0}),
-               std::invalid_argument);
-  // The doubly periodic Taylor–Green box is accepted.
+  ParticleSystem ps = ghost->make_particles();
+  EXPECT_THROW(SphEngine(*ghost, ps, SphEngineOptions{SphFormulation::transport_velocity, 1.0}), std::invalid_argument);
+  const auto channel = builtin_registry().scenes.create({{"name", "poiseuille-uniform"}, {"n_y", 32}}, "/scene");
   const auto tg = builtin_registry().scenes.create({{"name", "taylor-green"}, {"n", 32}}, "/scene");
-  EXPECT_NO_THROW(check_direct_run(*tg, solver, "/solver"));
+  EXPECT_NO_THROW(check_direct_run(*channel, tvf, "/solver"));
+  EXPECT_NO_THROW(check_direct_run(*tg, tvf, "/solver"));
+  EXPECT_NO_THROW(check_direct_run(*cavity, tvf, "/solver"));
+}
+
+// The cavity scene is PySPH's cavity.py: n² fluid particles on (w + (i + ½) dx) inside walls as thick as the
+// support plus a layer, the solid particles above the fluid (corners included) moving at the lid speed, the others
+// at rest; m = ρ0 dx², ν = U L/Re, c = 10 U.
+TEST(TransportVelocity, CavitySceneIsPySphs) {
+  const auto s = builtin_registry().scenes.create({{"name", "lid-driven-cavity"}, {"n", 20}}, "/scene");
+  const ParticleSystem ps = s->make_particles();
+  const double dx = 0.05, w = s->cavity->origin;
+  EXPECT_DOUBLE_EQ(w, 4 * dx);  // quintic, h = dx: support 3 dx, plus one layer
+  std::size_t fluid = 0, lid = 0;
+  for (std::size_t a = 0; a < ps.size(); ++a) {
+    EXPECT_DOUBLE_EQ(ps.mass[a], dx * dx);
+    const bool inside = ps.x[a] > w && ps.x[a] < w + 1.0 && ps.y[a] > w && ps.y[a] < w + 1.0;
+    EXPECT_EQ(ps.fixed[a] == 0, inside);
+    fluid += inside;
+    const bool top = ps.y[a] > w + 1.0;
+    lid += top;
+    EXPECT_EQ(ps.vx[a], top ? 1.0 : 0.0);
+    EXPECT_EQ(ps.vy[a], 0.0);
+  }
+  EXPECT_EQ(fluid, 400u);
+  EXPECT_EQ(lid, 4u * 28u);
+  EXPECT_NEAR(s->phase_viscosity[0], 0.01, 1e-15);
+  EXPECT_DOUBLE_EQ(s->sound_speed, 10.0);
 }
 
 // The scene: the exact field at t = 0 on the particles (PySPH's exact_solution), ν = U L/Re, c = 10 U, m = ρ0 dx²,

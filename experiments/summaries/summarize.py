@@ -20,6 +20,7 @@ Views (the summarize_*.py files beside this one, kept importable and runnable on
                          layered-two-phase scene   summarize_two_phase      table  -> summary.md
                          cellular scene            summarize_cellular       table  -> summary.md
                          taylor-green scene        summarize_taylor_green   table  -> summary.md
+                         lid-driven-cavity scene   summarize_cavity         table  -> summary.md
                          otherwise                 summarize_validation     table  -> summary.md
   reduced_model          experiment pareto_*       summarize_pareto         table  -> summary.md, summary.png
                          experiment error_budget_* summarize_error_budget  table  -> summary.md, summary.png
@@ -66,6 +67,8 @@ def view_of(table):
             return "summarize_cellular", "stdout", "summary.md"
         if "taylor-green" in scenes:
             return "summarize_taylor_green", "stdout", "summary.md"
+        if "lid-driven-cavity" in scenes:
+            return "summarize_cavity", "stdout", "summary.md"
         return "summarize_validation", "stdout", "summary.md"
     if kind == "reduced_model":
         model = reduced_model_of(rows)

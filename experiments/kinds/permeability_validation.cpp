@@ -104,7 +104,7 @@ json run_permeability_validation(const Scene& scene, SphRunOptions opt) {
   errors["max_distance_from_lattice_dx"] = max_distance_from_lattice(scene, ps);
   {
     ParticleSystem probe = ps;
-    SphEngine engine(scene, probe);
+    SphEngine engine(scene, probe, opt.engine);
     engine.compute_accelerations();
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (std::size_t a = 0; a < ps.size(); ++a) {

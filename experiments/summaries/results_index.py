@@ -46,6 +46,8 @@ QUESTIONS = {
     "near_wall/landweber_known_zeros_uniform": "Does the paper's Landweber closure of order n = 0, 1, 2 improve under the near-wall balance when it knows the wall rows' zeros (uniform channel, n_y = 192)?",
     "near_wall/landweber_known_zeros_fig4": "Does the paper's Landweber closure of order n = 0, 1, 2 with the known zeros reach Fig. 4's second-order target (<= 8 %) under the near-wall balance?",
     "near_wall/landweber_known_zeros_two_phase": "Does the paper's second-order Landweber closure with the known zeros reach <= 1.5 % on the two-phase cases 1-3 (n_y = 192)?",
+    "cavity/tvf_re100": "Does the transport-velocity direct SPH with the generalized wall condition reproduce Ghia, Ghia & Shin's centre-line velocities of the lid-driven cavity at Re = 100 (within 2 % of the lid speed at n = 100), and where are its particles saved for a reduced model's transient?",
+    "cylinders/tvf_re1": "Does the transport-velocity direct SPH (the generalized wall condition on the cylinders) give a permeability at Re ~ 1 that converges in n, where the standard WCSPH's moved away from the Stokes value with each refinement?",
     "taylor_green/tvf_re100_perturbed": "Does the transport-velocity direct SPH of the Taylor-Green vortex (Re = 100, started off the lattice as PySPH's --perturb 0.3 --hdx 1.5) follow the exact decay of its largest speed, and where are its particles saved for the reduced model's transient?",
     "near_wall/tikhonov_rules_two_phase": "Which alpha does each rule choose for the near-wall closure on the two-phase cases 1-3 (n_y = 192), and at what error?",
 }
@@ -86,6 +88,14 @@ def headline(t):
         amp = [abs(x) for x in amp if x is not None]
         worst = [get(r, "errors", "max_speed", "worst") for r in rows]
         worst = [(r["label"], x) for r, x in zip(rows, worst) if x is not None]
+        ghia = [(r["label"], get(r, "errors", "centrelines", "worst")) for r in rows]
+        ghia = [(l, x) for l, x in ghia if x is not None]
+        perm = [(r["label"], get(r, "errors", "permeability", "relative_difference")) for r in rows]
+        perm = [(l, x) for l, x in perm if x is not None]
+        if perm:  # porous media: the Darcy permeability against the scene's Stokes reference
+            return "k vs the Stokes reference: " + ", ".join(f"{l} {pct(x)}" for l, x in perm)
+        if ghia:  # the lid-driven cavity: the centre lines against Ghia's, in units of the lid speed
+            return "centre lines vs Ghia et al., largest \\|difference\\| / U: " + ", ".join(f"{l} {pct(x)}" for l, x in ghia)
         if worst:  # the Taylor-Green vortex: the largest speed against the exact decay
             return "max\\|v\\| vs exact decay, worst over the saved times: " + ", ".join(f"{l} {pct(x)}" for l, x in worst)
         if amp:  # cellular scenes: the fitted amplitude against the exact one

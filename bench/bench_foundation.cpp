@@ -89,3 +89,28 @@ BENCHMARK(Foundation_SphStep)
     ->ArgNames({"n_y", "n_x", "threads", "isa"})
     ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
+
+// One direct SPH step per formulation, one thread, the best pair kernel: the standard WCSPH against the transport
+// velocity on the same particles (the transport velocity's cost target: at most 1.5x a standard step per particle).
+// Args: scene (0: taylor-green, doubly periodic; 1: lid-driven-cavity, walls on four sides with the transport
+// velocity's wall condition, zero-velocity walls under the standard one), n, formulation (0: standard, 1:
+// transport_velocity). items_per_second: moving particle-steps per second.
+static void Foundation_SphStepFormulation(benchmark::State& state) {
+  omp_set_num_threads(1);
+  const char* name = state.range(0) == 0 ? "taylor-green" : "lid-driven-cavity";
+  const auto scene = builtin_registry().scenes.create(json{{"name", name}, {"n", state.range(1)}}, "/scene");
+  ParticleSystem ps = scene->make_particles();
+  SphEngineOptions opt;
+  opt.formulation = state.range(2) == 0 ? SphFormulation::standard : SphFormulation::transport_velocity;
+  SphEngine engine(*scene, ps, opt);
+  const double dt = engine.time_step(0.25);
+  for (int k = 0; k < 10; ++k) engine.step(dt);
+  for (auto _ : state) engine.step(dt);
+  state.counters["moving_particles"] = static_cast<double>(engine.moving().size());
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(engine.moving().size()));
+}
+BENCHMARK(Foundation_SphStepFormulation)
+    ->ArgsProduct({{0, 1}, {96}, {0, 1}})
+    ->ArgNames({"scene", "n", "formulation"})
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);

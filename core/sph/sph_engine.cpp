@@ -1,6 +1,7 @@
 // The direct SPH engine: its state, the list upkeep (search and rebuild test), the per-particle steps of the
 // two pair passes and the integrator; the pair loops themselves are in sph_pair_passes.hpp, the transport-velocity
-// formulation's passes and step in sph_engine_transport.cpp.
+// formulation's passes and step in sph_engine_transport.cpp. Above the 320-line guide by the constructor's setup
+// (the active set, the walls' static densities, the viscosities), which the passes read and nothing else uses.
 #include "core/sph/sph_engine.hpp"
 
 #include <omp.h>

@@ -131,7 +131,8 @@ class SphEngine {
   std::vector<TvfParticle> tvf_input_;
   std::vector<std::size_t> wall_pairs_;  // the listed fluid–wall pairs (transport velocity with fixed particles)
   bool transport_walls_ = false;         // transport velocity and some fixed particle
-  std::vector<double> wall_sum_w_, wall_sum_vx_, wall_sum_vy_, wall_sum_p_;  // the wall condition's sums
+  // The wall condition's sums over a wall particle's fluid neighbours: Σ W, Σ v W, Σ p W, Σ ρ x_wf W.
+  std::vector<double> wall_sum_w_, wall_sum_vx_, wall_sum_vy_, wall_sum_p_, wall_sum_rx_, wall_sum_ry_;
   std::vector<double> tvx_, tvy_, bx_, by_;
   SmoothingKernel w_;
   double skin_, mass_, viscous_stiffening_ = 1.0;

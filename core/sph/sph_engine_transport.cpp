@@ -31,9 +31,12 @@ void SphEngine::apply_transport_wall_condition() {
     wall_sum_vx_.assign(n, 0.0);
     wall_sum_vy_.assign(n, 0.0);
     wall_sum_p_.assign(n, 0.0);
+    wall_sum_rx_.assign(n, 0.0);
+    wall_sum_ry_.assign(n, 0.0);
   }
   for (int a : active_)
-    if (ps_.fixed[a]) wall_sum_w_[a] = wall_sum_vx_[a] = wall_sum_vy_[a] = wall_sum_p_[a] = 0.0;
+    if (ps_.fixed[a])
+      wall_sum_w_[a] = wall_sum_vx_[a] = wall_sum_vy_[a] = wall_sum_p_[a] = wall_sum_rx_[a] = wall_sum_ry_[a] = 0.0;
   // SetWallVelocity and SolidWallPressureBC's sums over each wall particle's fluid neighbours (one thread: the
   // fluid–wall pairs are a thin band).
   const std::uint8_t* fixed = ps_.fixed.data();
@@ -44,23 +47,26 @@ void SphEngine::apply_transport_wall_condition() {
     const double xwf = i_wall ? pair_dx_[p] : -pair_dx_[p], ywf = i_wall ? pair_dy_[p] : -pair_dy_[p];  // XIJ
     const double wij = w_.w(std::sqrt(xwf * xwf + ywf * ywf));
     if (wij == 0.0) continue;
-    Vec2 g(0.0, 0.0);  // the body force at the wall particle (its own acceleration is 0: walls are fixed)
-    if (scene_.body_force)
-      g = scene_.body_force(ps_.x[w], ps_.y[w]);
-    else if (scene_.force_x)
-      g = Vec2(scene_.force_x(ps_.y[w]), 0.0);
-    const double gdotxij = g.x() * xwf + g.y() * ywf;
+    const double rw = tvf_input_[f].rho * wij;
     wall_sum_w_[w] += wij;
     wall_sum_vx_[w] += ps_.vx[f] * wij;
     wall_sum_vy_[w] += ps_.vy[f] * wij;
-    wall_sum_p_[w] += tvf_input_[f].p * wij + tvf_input_[f].rho * gdotxij * wij;
+    wall_sum_p_[w] += tvf_input_[f].p * wij;
+    wall_sum_rx_[w] += rw * xwf;  // Σ ρ_f x_wf W, dotted with the body force once per wall particle
+    wall_sum_ry_[w] += rw * ywf;
   }
   const double rho0 = scene_.rho0, p0 = rho0 * scene_.sound_speed * scene_.sound_speed;
   const double vol = scene_.dx * scene_.dx, vol2 = vol * vol;  // PySPH: solid.V = 1/dx², never updated
   for (int a : active_) {
     if (!ps_.fixed[a]) continue;
     const double sw = wall_sum_w_[a];
-    double ufx = wall_sum_vx_[a], ufy = wall_sum_vy_[a], p = wall_sum_p_[a];
+    Vec2 g(0.0, 0.0);  // the body force at the wall particle (its own acceleration is 0: walls are fixed)
+    if (scene_.body_force)
+      g = scene_.body_force(ps_.x[a], ps_.y[a]);
+    else if (scene_.force_x)
+      g = Vec2(scene_.force_x(ps_.y[a]), 0.0);
+    double ufx = wall_sum_vx_[a], ufy = wall_sum_vy_[a];
+    double p = wall_sum_p_[a] + (g.x() * wall_sum_rx_[a] + g.y() * wall_sum_ry_[a]);
     if (sw > 1e-12) ufx /= sw, ufy /= sw;  // SetWallVelocity.post_loop
     if (sw > 1e-14) p /= sw;                // SolidWallPressureBC.post_loop
     const double rho = rho0 * ((p - scene_.background_pressure) / p0 + 1.0);

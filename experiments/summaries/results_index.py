@@ -48,6 +48,7 @@ QUESTIONS = {
     "near_wall/landweber_known_zeros_two_phase": "Does the paper's second-order Landweber closure with the known zeros reach <= 1.5 % on the two-phase cases 1-3 (n_y = 192)?",
     "cavity/tvf_re100": "Does the transport-velocity direct SPH with the generalized wall condition reproduce Ghia, Ghia & Shin's centre-line velocities of the lid-driven cavity at Re = 100 (within 2 % of the lid speed at n = 100), and where are its particles saved for a reduced model's transient?",
     "cylinders/tvf_re1": "Does the transport-velocity direct SPH (the generalized wall condition on the cylinders) give a permeability at Re ~ 1 that converges in n, where the standard WCSPH's moved away from the Stokes value with each refinement?",
+    "cylinders/tvf_re10": "How far below the Stokes value does the permeability of the cylinder lattice fall at Re ~ 10 in the transport-velocity direct SPH, and does it agree between n = 48 and 96?",
     "taylor_green/tvf_re100_perturbed": "Does the transport-velocity direct SPH of the Taylor-Green vortex (Re = 100, started off the lattice as PySPH's --perturb 0.3 --hdx 1.5) follow the exact decay of its largest speed, and where are its particles saved for the reduced model's transient?",
     "near_wall/tikhonov_rules_two_phase": "Which alpha does each rule choose for the near-wall closure on the two-phase cases 1-3 (n_y = 192), and at what error?",
 }

@@ -68,6 +68,10 @@ CAVITY = "results/cavity/tvf_re100/cavity_tvf_re100.json"
 
 # (doc, text with {0}, {1}, ..., [(file, row label or None for the file's top level, dotted key, formatter), ...])
 CLAIMS = [
+    ("README.md", "(Re = 100) to {0} of the lid speed at n = 100", [(CAVITY, "scene.n=100", "errors.centrelines.worst", pct(3))]),
+    ("README.md", "in n ({0} from the Stokes value at n = 192)",
+     [("results/cylinders/tvf_re1/cylinders_tvf_re1.json", "a=0.2L n=192", "errors.permeability.relative_difference",
+       lambda x: f"{100.0 * x:.2f} %".replace("-", "−"))]),
     ("docs/results.md", "{0} at n = 25, {1} at n = 50, {2} at n = 100 (the final state alone: {3} / {4} / {5} %)",
      [(CAVITY, "scene.n=25", "errors.centrelines.worst", pct(3)), (CAVITY, "scene.n=50", "errors.centrelines.worst", pct(3)),
       (CAVITY, "scene.n=100", "errors.centrelines.worst", pct(3)),

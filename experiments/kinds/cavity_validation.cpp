@@ -62,9 +62,7 @@ json run_cavity_validation(const json& cfg, const Scene& scene, const AveragingK
   const Scene::LidDrivenCavity& cavity = scene.cavity.value();
   const GhiaCentrelines ghia = ghia_centrelines(cavity.reynolds).value();
   const SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
-  const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("solver"), observe_spacing,
-                                 transient_saved_times(opt.target_time)};
-  const StoredReference direct = stored_direct_reference(request, scene, kernel, progress);
+  const StoredReference direct = stored_transient_reference(cfg, scene, kernel, observe_spacing, progress);
   const ParticleSystem& ps = direct.particles;
   const SphRunResult sph = SphRunResult::from_json(direct.run);
   json row = validation_row_header(sph, {{"dx", scene.dx},

@@ -18,9 +18,7 @@ json run_taylor_green_validation(const json& cfg, const Scene& scene, const Aver
                                  double observe_spacing, const std::function<void(const std::string&)>& progress) {
   const Scene::TaylorGreenVortex& tg = scene.taylor_green.value();
   const SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
-  const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("solver"), observe_spacing,
-                                 transient_saved_times(opt.target_time)};
-  const StoredReference direct = stored_direct_reference(request, scene, kernel, progress);
+  const StoredReference direct = stored_transient_reference(cfg, scene, kernel, observe_spacing, progress);
   const ParticleSystem& ps = direct.particles;
   const SphRunResult sph = SphRunResult::from_json(direct.run);
   json times = json::array(), computed = json::array(), exact = json::array(), relative = json::array();

@@ -14,6 +14,7 @@
 #include "core/sph/sph_engine.hpp"
 #include "core/sph/sph_run.hpp"
 #include "core/base/status.hpp"
+#include "experiments/kinds/direct_reference.hpp"
 
 namespace closurelab {
 
@@ -23,6 +24,17 @@ inline std::vector<double> transient_saved_times(double target_time) {
   std::vector<double> times;
   for (int k = 1; k <= kSnapshots; ++k) times.push_back(target_time * k / kSnapshots);
   return times;
+}
+
+// A transient's direct reference from the store (computed and stored when absent): the key is the cell's scene,
+// kernel and solver sections, `observe_spacing` (absolute) and transient_saved_times of the solver's target_time.
+inline StoredReference stored_transient_reference(const json& cfg, const Scene& scene, const AveragingKernel& kernel,
+                                                  double observe_spacing,
+                                                  const std::function<void(const std::string&)>& progress) {
+  const SphRunOptions opt = sph_run_options_from(cfg.at("solver"));
+  const ReferenceRequest request{cfg.at("scene"), cfg.at("kernel"), cfg.at("solver"), observe_spacing,
+                                 transient_saved_times(opt.target_time)};
+  return stored_direct_reference(request, scene, kernel, progress);
 }
 
 // The row's status, direct_sph, message (where the run has one) and scene_derived.

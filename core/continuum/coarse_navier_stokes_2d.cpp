@@ -94,15 +94,7 @@ void CoarseNavierStokes2D::unprojected_rate(const Eigen::VectorXd& vx, const Eig
 bool CoarseNavierStokes2D::step(double dt) {
   Eigen::VectorXd rx, ry;
   unprojected_rate(vx_, vy_, rx, ry);
-  Eigen::VectorXd nx, ny;
-  if (dt_prev_ > 0.0) {  // AB2 with variable steps: v* = v + Δt [(1 + ω/2) r_n − (ω/2) r_{n−1}], ω = Δt / Δt_prev
-    const double w = dt / dt_prev_;
-    nx = vx_ + dt * ((1.0 + 0.5 * w) * rx - 0.5 * w * rx_prev_);
-    ny = vy_ + dt * ((1.0 + 0.5 * w) * ry - 0.5 * w * ry_prev_);
-  } else {
-    nx = vx_ + dt * rx;
-    ny = vy_ + dt * ry;
-  }
+  Eigen::VectorXd nx = ab2(vx_, rx, rx_prev_, dt, dt_prev_), ny = ab2(vy_, ry, ry_prev_, dt, dt_prev_);
   const Eigen::VectorXd p_before = p_;
   project(nx, ny, dt);
   if (!nx.allFinite() || !ny.allFinite()) {
@@ -126,17 +118,6 @@ double CoarseNavierStokes2D::time_step() const {
   double dt = std::min(opt_.max_time_step, opt_.viscous_number * h * h / nu_);
   if (vmax > 0.0) dt = std::min(dt, opt_.cfl * h / vmax);
   return dt;
-}
-
-bool CoarseNavierStokes2D::advance_to(double t) {
-  while (time_ < t) {
-    const double remaining = t - time_;
-    // Equal steps to t under the current limit, so that the last one is not a sliver (AB2's ω stays near 1).
-    const double count = std::max(1.0, std::ceil(remaining / time_step() - 1e-9));
-    if (!step(remaining / count)) return false;
-    if (count == 1.0) time_ = t;
-  }
-  return true;
 }
 
 Eigen::VectorXd CoarseNavierStokes2D::divergence() const {

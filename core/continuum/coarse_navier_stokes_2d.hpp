@@ -27,11 +27,10 @@
 // round-off), so the scheme keeps its shape and its amplitude follows AB2 applied to ν λ_h, λ_h the 5-point
 // eigenvalue; the Kolmogorov flow F = F0 sin(ky) x̂ has no convective term and settles at F0 / (ν |λ_h|).
 #include <Eigen/Core>
-#include <limits>
 #include <memory>
 #include <string>
 
-#include "core/base/mesh.hpp"
+#include "core/continuum/continuum_navier_stokes_2d.hpp"
 
 namespace closurelab {
 
@@ -39,13 +38,7 @@ struct Scene;
 class AveragingKernel;
 class PeriodicProjection2D;
 
-struct CoarseNavierStokes2DOptions {
-  double cfl = 0.5;               // Δt ≤ cfl · h_min / max|v| (central convection with AB2: keep it ≤ 0.5)
-  double viscous_number = 0.125;  // Δt ≤ viscous_number · h_min² / ν (≤ 1/8: AB2's diffusion limit in 2D)
-  double max_time_step = std::numeric_limits<double>::infinity();
-};
-
-class CoarseNavierStokes2D {
+class CoarseNavierStokes2D : public ContinuumNavierStokes2D {
  public:
   // mesh: doubly periodic (both axes periodic, period = count · spacing); density ρ > 0, dynamic viscosity μ > 0;
   // force: the body force per unit mass at the nodes (flat j · nx + i; empty vectors: none). std::invalid_argument
@@ -60,23 +53,20 @@ class CoarseNavierStokes2D {
   // divergence-free fields (a user's initial projection); returns the max-node magnitude of what the projection
   // removed. The caller picks the coarse data (the experiment kind passes the averaged particle velocity, as the
   // reduced model starts from).
-  double set_velocity(const Eigen::VectorXd& vx, const Eigen::VectorXd& vy);
+  double set_velocity(const Eigen::VectorXd& vx, const Eigen::VectorXd& vy) override;
   // One AB2 step of length dt followed by the projection. False (and the state unchanged) if the result is not
   // finite.
-  bool step(double dt);
-  // Steps to time t (the last step shortened to land on it); false on a non-finite state.
-  bool advance_to(double t);
-  double time_step() const;  // the CFL and viscous limits at the current velocity
+  bool step(double dt) override;
+  double time_step() const override;  // the CFL and viscous limits at the current velocity
+  std::string method() const override { return "collocated central differences, AB2, exact FFT projection"; }
 
-  const TensorMesh2D& mesh() const { return mesh_; }
-  double time() const { return time_; }
-  long steps() const { return steps_; }
-  const Eigen::VectorXd& vx() const { return vx_; }
-  const Eigen::VectorXd& vy() const { return vy_; }
+  const TensorMesh2D& mesh() const override { return mesh_; }
+  const Eigen::VectorXd& vx() const override { return vx_; }
+  const Eigen::VectorXd& vy() const override { return vy_; }
   // The pressure of the last projection, ρ φ (zero mean), first order in time; zero before the first step.
   const Eigen::VectorXd& pressure() const { return p_; }
   // The central-difference divergence of the current velocity at the nodes.
-  Eigen::VectorXd divergence() const;
+  Eigen::VectorXd divergence() const override;
   // ∂_t v of the semi-discrete equations before the projection: −∇·(v⊗v) + ν Δv + F (for tests and diagnostics).
   void unprojected_rate(const Eigen::VectorXd& vx, const Eigen::VectorXd& vy, Eigen::VectorXd& rx,
                         Eigen::VectorXd& ry) const;
@@ -93,8 +83,6 @@ class CoarseNavierStokes2D {
   std::unique_ptr<PeriodicProjection2D> projection_;
   Eigen::VectorXd vx_, vy_, p_, rx_prev_, ry_prev_;
   double dt_prev_ = 0.0;  // 0: no history (the next step is forward Euler)
-  double time_ = 0.0;
-  long steps_ = 0;
 };
 
 // The scene's body force per unit mass sampled at the nodes (body_force, else force_x(y) along x; zero if neither).

@@ -48,7 +48,7 @@ class CavityNavierStokes2D : public ContinuumNavierStokes2D {
 
   // The velocity at (x, y) inside the walls (mesh coordinates): each component interpolated bilinearly from its
   // faces, the ghost values beyond a wall making it the wall's velocity on the wall; the wall velocity outside.
-  Eigen::Vector2d velocity_at(double x, double y) const;
+  Eigen::Vector2d velocity_at(double x, double y) const override;
   // The pressure of the last projection, ρ φ (φ zero at cell 0); zero before the first step.
   const Eigen::VectorXd& pressure() const { return p_; }
 

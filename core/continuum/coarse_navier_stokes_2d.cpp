@@ -131,6 +131,19 @@ Eigen::VectorXd CoarseNavierStokes2D::divergence() const {
   return d;
 }
 
+Eigen::Vector2d CoarseNavierStokes2D::velocity_at(double x, double y) const {
+  const int nx = mesh_.nx(), ny = mesh_.ny();
+  const double sx = (x - mesh_.x.origin) / mesh_.x.spacing, sy = (y - mesh_.y.origin) / mesh_.y.spacing;
+  const double fx = std::floor(sx), fy = std::floor(sy), a = sx - fx, b = sy - fy;
+  const int i0 = ((static_cast<long>(fx) % nx) + nx) % nx, j0 = ((static_cast<long>(fy) % ny) + ny) % ny;
+  const int i1 = (i0 + 1) % nx, j1 = (j0 + 1) % ny;
+  const auto at = [&](const Eigen::VectorXd& f) {
+    return (1 - a) * (1 - b) * f[j0 * nx + i0] + a * (1 - b) * f[j0 * nx + i1] + (1 - a) * b * f[j1 * nx + i0] +
+           a * b * f[j1 * nx + i1];
+  };
+  return {at(vx_), at(vy_)};
+}
+
 double CoarseNavierStokes2D::laplacian_eigenvalue(double kx, double ky) const {
   const double hx = mesh_.x.spacing, hy = mesh_.y.spacing;
   const double sx = std::sin(0.5 * kx * hx), sy = std::sin(0.5 * ky * hy);

@@ -67,6 +67,8 @@ class CoarseNavierStokes2D : public ContinuumNavierStokes2D {
   const Eigen::VectorXd& pressure() const { return p_; }
   // The central-difference divergence of the current velocity at the nodes.
   Eigen::VectorXd divergence() const override;
+  // Bilinear interpolation of the node values, periodic in both directions.
+  Eigen::Vector2d velocity_at(double x, double y) const override;
   // ∂_t v of the semi-discrete equations before the projection: −∇·(v⊗v) + ν Δv + F (for tests and diagnostics).
   void unprojected_rate(const Eigen::VectorXd& vx, const Eigen::VectorXd& vy, Eigen::VectorXd& rx,
                         Eigen::VectorXd& ry) const;

@@ -40,6 +40,9 @@ class ContinuumNavierStokes2D {
   virtual const Eigen::VectorXd& vy() const = 0;
   // The solver's own discrete divergence of the current velocity, one value per node.
   virtual Eigen::VectorXd divergence() const = 0;
+  // The velocity at a point of the scene (mesh coordinates), interpolated from the solver's unknowns; outside the
+  // fluid (in a wall) the wall's velocity.
+  virtual Eigen::Vector2d velocity_at(double x, double y) const = 0;
 
   // Steps to time t (the last steps shortened to land on it); false on a non-finite state.
   bool advance_to(double t);

@@ -86,6 +86,7 @@ double Scene::max_viscosity() const {
 
 double Scene::time_scale() const {
   if (cellular_mode && cellular_mode->decay_rate > 0.0) return 1.0 / cellular_mode->decay_rate;
+  if (cavity) return cavity->side / cavity->lid_speed;  // L / U (the box, walls included, is larger)
   const double length = has_walls ? wall_hi - wall_lo : box.ly;
   return analytic_peak > 0.0 ? length / analytic_peak : 0.0;
 }

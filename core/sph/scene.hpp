@@ -172,7 +172,8 @@ struct Scene {
 
   // The time unit τ of a transient's snapshot times t/τ (the reduced models' `transient.t_over_tau`): the
   // cellular mode's decay time 1/(2k²ν) where the scene has one, else the advective time L/v_max, L the channel's
-  // width between the wall surfaces (L_y without walls) and v_max the analytic peak; 0 when the scene has neither.
+  // width between the wall surfaces (the cavity's side L; L_y without walls) and v_max the analytic peak (the lid
+  // speed); 0 when the scene has neither.
   double time_scale() const;
 
   bool is_wall(double y) const { return has_walls && (y < wall_lo || y > wall_hi); }

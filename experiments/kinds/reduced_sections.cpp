@@ -70,8 +70,8 @@ void check_snapshot_times(const json& times, const std::string& path) {
 ParamSchema transient_schema() {
   return {array_param("t_over_tau", json::array(),
                       "snapshot times t / tau (ascending), tau the scene's time scale: the cellular mode's decay time "
-                      "1 / (2 k^2 nu), else the advective time L / v_max (L the channel width, or L_y without walls; "
-                      "v_max the analytic peak); t_star, the column model's earlier name of the same times, is read "
+                      "1 / (2 k^2 nu), else the advective time L / v_max (L the channel width, the cavity's side, or L_y "
+                      "without walls; v_max the analytic peak); t_star, the column model's earlier name of the same times, is read "
                       "as t_over_tau; the final state is always reported as well")};
 }
 

@@ -1,0 +1,65 @@
+#pragma once
+// How the coarse continuum baseline is scored (kind coarse_continuum_2d, experiments/kinds/coarse_continuum.cpp): on
+// the mode of a scene with an exact single-mode solution (the Taylor–Green vortex, the cellular flow), and on a scene
+// with walls and no exact field (the lid-driven cavity) through the averaging, by Ghia's centre lines and against the
+// same solver on a finer mesh.
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "core/averaging/averaging_kernel.hpp"
+#include "core/base/params.hpp"
+#include "core/continuum/continuum_navier_stokes_2d.hpp"
+#include "core/sph/scene.hpp"
+
+namespace closurelab {
+
+struct NodeVelocity {
+  Eigen::VectorXd x, y;  // at the mesh's nodes (flat j · nx + i)
+};
+
+// The scene's mode at unit amplitude at the nodes: the Taylor–Green vortex (−cos kx sin ky, sin kx cos ky) or the
+// cellular mode (sin kx cos ky, −cos kx sin ky); the exact velocity at time t is mode_amplitude(t) times it.
+NodeVelocity mode_shape(const Scene& s, const TensorMesh2D& mesh);
+double mode_amplitude(const Scene& s, double t);
+double mode_wavenumber(const Scene& s);
+NodeVelocity scaled(const NodeVelocity& f, double a);
+// The least-squares amplitude of `f` relative to `unit`: Σ f · unit / Σ |unit|².
+double fitted(const NodeVelocity& f, const NodeVelocity& unit);
+// The error norms of `u` against `ref` relative to `scale` over all nodes (also reported as fluid_nodes) and the
+// relative difference of their peaks; with `interior` (node indices), also "interior_nodes" over those.
+json norms(const NodeVelocity& u, const NodeVelocity& ref, double scale, const std::vector<int>& interior = {});
+// The cavity's nodes at least 3η' from every wall (Scene::in_interior's distance); none for other scenes.
+std::vector<int> interior_nodes(const Scene& s, const TensorMesh2D& mesh);
+
+// The baseline seen through the averaging, as the direct SPH is seen: the scene's own particles (the fluid on its
+// lattice carrying the baseline's velocity_at their sites, the walls their prescribed velocity) averaged by the
+// kernel onto the mesh ((2.9), average_particles). Near a wall the window then mixes the fluid with the wall's
+// particles exactly as it does for the averaged direct SPH.
+NodeVelocity averaged_baseline(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& mesh,
+                               const ContinuumNavierStokes2D& baseline);
+
+// A replay of a baseline run (the same solver, started as the timed one was, deterministic) for what the timed runs
+// leave out: the averaged view onto `onto` at each of `times` up to `target` (in order) and at `target`, and, for a
+// cavity at a Reynolds number Ghia tabulates, the centre lines at `target` against Ghia, Ghia & Shin (1982) as the
+// direct validation reports them (u at x = L/2, v at y = L/2 at his points; max_abs_u, max_abs_v and worst over the
+// points inside the cavity, in units of the lid speed). False if the replay leaves the finite numbers.
+struct BaselineViews {
+  std::vector<NodeVelocity> at_times;
+  NodeVelocity at_target;
+  json centrelines;  // null without a Ghia table
+};
+bool replay_baseline_views(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& onto,
+                           ContinuumNavierStokes2D& baseline, const std::vector<double>& times, double target,
+                           BaselineViews& out);
+
+// The stand-in for the exact field of a scene without one (the cavity): the same baseline on a mesh `refinement`
+// times finer over the same rectangle, at rest at time 0 (the cavity's start). At refinement 8 of the cavity's 16 ×
+// 16 it is within ~1e-3 U of the converged solution (tests/numerical/test_cavity_navier_stokes_2d.cpp: the change
+// from 64 to 128 cells is of that size), so the averaged direct SPH's distance from its averaged view is the
+// reference's own error, and the coarse baseline's distance from it the coarse mesh's.
+constexpr int kFineContinuumRefinement = 8;
+std::unique_ptr<ContinuumNavierStokes2D> refined_baseline_at_rest(const Scene& scene, const TensorMesh2D& mesh,
+                                                                  int refinement, CoarseNavierStokes2DOptions options);
+
+}  // namespace closurelab

@@ -27,6 +27,7 @@ QUESTIONS = {
     "cellular/direct": "Does the direct SPH of the cellular flow reach the exact steady amplitude g/(2k^2 nu), and at what order?",
     "cellular/reduced": "Does the two-dimensional reduced model of the cellular flow reach the averaged direct SPH, and how much faster is it as eta'/eps' grows?",
     "cellular/coarse_continuum": "How close does the coarse continuum Navier-Stokes baseline on the reduced model's mesh come to the averaged direct SPH of the cellular flow (issue 43)?",
+    "cavity/coarse_continuum_re100": "How close does a coarse continuum Navier-Stokes solve on the reduced model's 16 x 16 mesh (staggered, no-slip walls, sliding lid) come to the averaged direct SPH of the lid-driven cavity at Re = 100 over the transient, and how far is the direct SPH itself from the converged Navier-Stokes flow (issue 43)?",
     "taylor_green/coarse_continuum_re100": "How close does the coarse continuum Navier-Stokes baseline come to the averaged exact and direct Taylor-Green vortex at Re = 100 (issue 43)?",
     "taylor_green/reduced_2d_re100": "How close does the 2D reduced model stepped in time, linear and nonlinear (incompressible, convective flux of the closure), come to the averaged direct Taylor-Green vortex at Re = 100 over the transient, and at what cost (issue 43)?",
     "taylor_green/reference_sound_speed_re100": "Is the Taylor-Green reduced model's error against the direct SPH the reference's own: does the reference's floor (averaged direct SPH against the averaged exact field) fall as its sound speed grows from 10 to 40 U?",

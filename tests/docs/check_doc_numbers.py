@@ -65,9 +65,16 @@ FRONT = "results/speed_vs_error/poiseuille_uniform/pareto_poiseuille_uniform.jso
 ALL = "errors.vs_averaged_direct_sph.all_nodes.max_rel"
 TG = "results/taylor_green/tvf_re100_perturbed/taylor_green_tvf_re100_perturbed.json"
 CAVITY = "results/cavity/tvf_re100/cavity_tvf_re100.json"
+CAVITY_CC = "results/cavity/coarse_continuum_re100/cavity_coarse_continuum_re100.json"
 
 # (doc, text with {0}, {1}, ..., [(file, row label or None for the file's top level, dotted key, formatter), ...])
 CLAIMS = [
+    ("docs/results.md", "**Over all nodes: {0} / {1} / {2} %**",
+     [(CAVITY_CC, f"scene.n={n}", "errors.worst_over_saved_times.baseline_vs_averaged_direct_sph.all_nodes",
+       pct_number(3)) for n in (25, 50, 100)]),
+    ("docs/results.md", "Over all nodes {0} / {1} / {2} %, in the interior",
+     [(CAVITY_CC, f"scene.n={n}", "errors.worst_over_saved_times.direct_sph_vs_averaged_fine_continuum.all_nodes",
+       pct_number(3)) for n in (25, 50, 100)]),
     ("README.md", "(Re = 100) to {0} of the lid speed at n = 100", [(CAVITY, "scene.n=100", "errors.centrelines.worst", pct(3))]),
     ("README.md", "in n ({0} from the Stokes value at n = 192)",
      [("results/cylinders/tvf_re1/cylinders_tvf_re1.json", "a=0.2L n=192", "errors.permeability.relative_difference",

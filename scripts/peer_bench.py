@@ -1,9 +1,14 @@
-"""Side by side: closurelab's direct SPH against the PySPH peer model (tests/peer/poiseuille_pysph.py) on the
-same square box of the poiseuille-uniform scene (n_x = n_y), interleaved A, B, A, B ... per size and thread
-count, printing each pair's ratio (PySPH seconds per step / closurelab seconds per step) and their spread.
+"""Side by side: closurelab's direct SPH against PySPH, interleaved A, B, A, B ... per size and thread count,
+printing each pair's ratio (PySPH seconds per step / closurelab seconds per step) and their spread. Two scenes:
+  poiseuille  (the default) the PySPH peer model (tests/peer/poiseuille_pysph.py) on the same square box of the
+              poiseuille-uniform scene (n_x = n_y), standard WCSPH;
+  cavity      PySPH's own lid-driven cavity (pysph/examples/cavity.py: TVFScheme, the generalized wall condition)
+              against closurelab's lid-driven-cavity scene under the transport-velocity formulation, n fluid
+              particles per side; the two engines give the same particles to round-off (tests/peer/
+              test_cavity_peer.cpp).
 
-  /usr/bin/python3 scripts/peer_bench.py [--closurelab build/experiments/closurelab] [--sizes 48 96]
-                                         [--threads 1 2] [--pairs 3] [--steps 200] [--out FILE]
+  /usr/bin/python3 scripts/peer_bench.py [--closurelab build/experiments/closurelab] [--scene poiseuille|cavity]
+                                         [--sizes 48 96] [--threads 1 2] [--pairs 3] [--steps 200] [--out FILE]
                                          [--control OTHER_CLOSURELAB]
 
 --control runs a second closurelab build (e.g. of the commit before an engine change) in every pair as well,
@@ -13,7 +18,8 @@ change measured against its predecessor under the same load.
 What is timed: closurelab's SPH run (the row's cost.wall_seconds: the time loop, not the process start, the
 scene set-up or the averaging), and PySPH's "Run took" (its solver loop with the first and last dump, not the
 start of Python, the particle set-up or the compile of the equations, which is cached after the first run).
-Both run the same steps (t = steps x 0.25 eps'^2) on the same particles. PySPH runs serial on one thread (its
+Both run the same steps on the same particles: t = steps x 0.25 eps'^2 (poiseuille), steps x the cavity's acoustic
+step 0.25 h / (c0 + U) (cavity, h = eps' = L/n, c0 = 10 U: PySPH's and closurelab's step there). PySPH runs serial on one thread (its
 fastest there) and --openmp with OMP_NUM_THREADS on more, with --cache-nnps (its neighbours found once per
 evaluation and reused by the three equation groups: PySPH's best case); closurelab with OMP_NUM_THREADS.
 The machine is shared: record `uptime` with the results, and read the ratios of one pair, A and B seconds
@@ -43,12 +49,22 @@ def uptime():
         return "(uptime not available)"
 
 
-def run_closurelab(exe, ny, steps, threads, work):
-    dt = 0.25 * (1.0 / ny) ** 2
+def step_size(scene, n):
+    if scene == "cavity":  # PySPH's cavity.py: dt = 0.25 h / (c0 + Umax), h = dx = L / n, c0 = 10, Umax = 1
+        return 0.25 * (1.0 / n) / 11.0
+    return 0.25 * (1.0 / n) ** 2
+
+
+def run_closurelab(exe, scene, ny, steps, threads, work):
+    t = steps * step_size(scene, ny)
+    solver = {"mode": "target_time", "target_time": t, "max_time": t}
+    if scene == "cavity":
+        solver["formulation"] = "transport_velocity"
+        scene_section = {"name": "lid-driven-cavity", "n": ny}
+    else:
+        scene_section = {"name": "poiseuille-uniform", "n_y": ny, "n_x": ny}
     spec = {"name": "bench", "kind": "direct_sph_validation",
-            "base": {"scene": {"name": "poiseuille-uniform", "n_y": ny, "n_x": ny},
-                     "kernel": {"name": "gaussian"},
-                     "solver": {"mode": "target_time", "target_time": steps * dt, "max_time": steps * dt}}}
+            "base": {"scene": scene_section, "kernel": {"name": "gaussian"}, "solver": solver}}
     d = tempfile.mkdtemp(dir=work)
     with open(os.path.join(d, "spec.json"), "w") as f:
         json.dump(spec, f)
@@ -65,10 +81,15 @@ def run_closurelab(exe, ny, steps, threads, work):
     return float(sph["wall_seconds"]), int(sph["steps"]), float(sph["particle_steps"])
 
 
-def run_pysph(ny, steps, threads, work):
-    dt = 0.25 * (1.0 / ny) ** 2
+def run_pysph(scene, ny, steps, threads, work):
     d = tempfile.mkdtemp(dir=work)
-    cmd = [sys.executable, peer, "--ny", str(ny), "--nx", str(ny), "--tf", repr(steps * dt), "-d", d, "--cache-nnps"]
+    tf = repr(steps * step_size(scene, ny))
+    if scene == "cavity":
+        # cavity.py's application run as written, without its post-processing (outside the timing anyway).
+        cmd = [sys.executable, "-c", "from pysph.examples.cavity import LidDrivenCavity as A; A().run()", "--nx",
+               str(ny), "--tf", tf, "-d", d, "--cache-nnps"]
+    else:
+        cmd = [sys.executable, peer, "--ny", str(ny), "--nx", str(ny), "--tf", tf, "-d", d, "--cache-nnps"]
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     if threads > 1:
         cmd.append("--openmp")
@@ -84,6 +105,7 @@ def run_pysph(ny, steps, threads, work):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--closurelab", default=os.path.join(root, "build", "experiments", "closurelab"))
+    ap.add_argument("--scene", choices=["poiseuille", "cavity"], default="poiseuille")
     ap.add_argument("--sizes", type=int, nargs="+", default=[48, 96])
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--pairs", type=int, default=3)
@@ -102,7 +124,9 @@ def main():
                             text=True).stdout.strip()
     dirty = subprocess.run(["git", "-C", root, "status", "--porcelain", "--untracked-files=no"], capture_output=True,
                            text=True).stdout.strip()
-    say("# peer benchmark: closurelab (A) against the PySPH peer model (B), square box of poiseuille-uniform")
+    say("# peer benchmark: closurelab (A) against PySPH (B), %s" % (
+        "the lid-driven cavity (transport velocity; PySPH's cavity.py)" if a.scene == "cavity"
+        else "the PySPH peer model on a square box of poiseuille-uniform"))
     say("# command: %s %s" % (sys.executable, " ".join(sys.argv)))
     say("# commit %s%s; %s; python %s; %s" % (commit, " (dirty)" if dirty else "", platform.node(),
                                               platform.python_version(), date()))
@@ -114,16 +138,16 @@ def main():
     try:
         # PySPH's compile (cached afterwards) outside the timings.
         for t in sorted(set(a.threads)):
-            run_pysph(a.sizes[0], 2, t, work)
+            run_pysph(a.scene, a.sizes[0], 2, t, work)
         summary = []
         for ny in a.sizes:
             for t in a.threads:
                 ratios, control_ratios, speed_ups = [], [], []
-                say("n_y = n_x = %d (%d particles), %d thread(s), %d steps:" % (ny, ny * ny, t, a.steps))
+                say("n_y = n_x = %d (%d fluid particles), %d thread(s), %d steps:" % (ny, ny * ny, t, a.steps))
                 for k in range(a.pairs):
-                    ca, steps, particle_steps = run_closurelab(a.closurelab, ny, a.steps, t, work)
-                    cc = run_closurelab(a.control, ny, a.steps, t, work)[0] if a.control else None
-                    pb, pysph_steps = run_pysph(ny, a.steps, t, work)
+                    ca, steps, particle_steps = run_closurelab(a.closurelab, a.scene, ny, a.steps, t, work)
+                    cc = run_closurelab(a.control, a.scene, ny, a.steps, t, work)[0] if a.control else None
+                    pb, pysph_steps = run_pysph(a.scene, ny, a.steps, t, work)
                     if pysph_steps != steps:
                         raise SystemExit("step counts differ: closurelab %d, PySPH %d" % (steps, pysph_steps))
                     r = pb / ca

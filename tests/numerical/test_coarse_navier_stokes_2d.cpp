@@ -233,3 +233,20 @@ TEST(CoarseContinuumKind, ScoresTheTaylorGreenVortexOnItsOwnMode) {
     EXPECT_LT(row.at("cost").at("final_max_divergence").get<double>(), 1e-12) << initial;
   }
 }
+
+TEST(CoarseNavierStokes2D, VelocityAtInterpolatesTheNodesPeriodically) {
+  // velocity_at (the face the cavity's scoring uses): the node values at the nodes, their mean half-way between two
+  // nodes (across the periodic seam too), and a linear field's value anywhere inside a cell.
+  const TensorMesh2D mesh = square_mesh(8);
+  CoarseNavierStokes2D ns(mesh, 1.0, kNu, {}, {});
+  Eigen::VectorXd ux, uy;
+  taylor_green(mesh, kK, 1.0, ux, uy);
+  ns.set_velocity(ux, uy);
+  for (int n = 0; n < mesh.size(); n += 5) {
+    EXPECT_NEAR(ns.velocity_at(mesh.node(n).x(), mesh.node(n).y()).x(), ns.vx()[n], 1e-14);
+    EXPECT_NEAR(ns.velocity_at(mesh.node(n).x() + 1.0, mesh.node(n).y() - 2.0).y(), ns.vy()[n], 1e-14);
+  }
+  const double h = mesh.x.spacing;
+  const Eigen::Vector2d seam = ns.velocity_at(mesh.x.node(7) + 0.5 * h, mesh.y.node(3));
+  EXPECT_NEAR(seam.x(), 0.5 * (ns.vx()[mesh.index(7, 3)] + ns.vx()[mesh.index(0, 3)]), 1e-14);
+}

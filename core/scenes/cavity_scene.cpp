@@ -61,7 +61,6 @@ std::unique_ptr<Scene> make_cavity(const json& p) {
   s->cavity = Scene::LidDrivenCavity{l, w, u, re};
   s->body_force = [](double, double) { return Vec2(0.0, 0.0); };
   s->x_invariant = false;
-  s->stress_components = {"xx", "xy", "yx", "yy"};
   s->analytic_peak = u;
   s->sound_speed = p.at("sound_speed_factor").get<double>() * u;  // PySPH: c0 = 10 Umax
   return s;

@@ -64,7 +64,6 @@ std::unique_ptr<Scene> make_cellular(const json& p) {
   else s->body_force = [](double, double) { return Vec2(0.0, 0.0); };
   if (taylor_green) s->initial_velocity = [amplitude, k](double x, double y) { return Vec2(amplitude * cellular_mode(x, y, k)); };
   s->x_invariant = false;
-  s->stress_components = {"xx", "xy", "yx", "yy"};
   s->analytic_peak = amplitude;
   s->sound_speed = p.at("sound_speed_factor").get<double>() * amplitude;
   s->background_pressure = p.at("background_pressure_factor").get<double>() * s->rho0 * s->sound_speed * s->sound_speed;

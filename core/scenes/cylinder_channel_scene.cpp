@@ -86,7 +86,6 @@ std::unique_ptr<Scene> make_cylinder_channel(const json& p) {
   s->background_pressure = p.at("background_pressure_factor").get<double>() * s->rho0 * s->sound_speed * s->sound_speed;
   s->analytic_peak = u;
   s->x_invariant = false;
-  s->stress_components = {"xx", "xy", "yx", "yy"};
   return s;
 }
 

@@ -141,7 +141,6 @@ std::unique_ptr<Scene> make_cylinder_lattice(const json& p) {
   s->background_pressure = p.at("background_pressure_factor").get<double>() * s->rho0 * s->sound_speed * s->sound_speed;
   s->analytic_peak = u_gap;  // no analytic field: the gap-velocity estimate sets the scales (sound speed, progress)
   s->x_invariant = false;
-  s->stress_components = {"xx", "xy", "yx", "yy"};
   return s;
 }
 

@@ -180,7 +180,6 @@ void register_layered_scene(Registry& r) {
                                                        p.at("vdw_a").get<double>(), p.at("k_star").get<double>(), "");
         s->background_pressure = 0.0;  // not used under (7.1)
         s->x_invariant = true;
-        s->stress_components = {"xy"};
         return s;
       });
 }

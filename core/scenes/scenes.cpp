@@ -202,7 +202,6 @@ Scene make_channel(const std::string& name, const json& p, const std::string& pa
   if (s.wall_lo < s.smoothing_kernel().support())
     throw ConfigError(path + "/eta_over_l", "walls (3 eta') thinner than the SPH support; raise eta' or n_y");
   s.x_invariant = true;
-  s.stress_components = {"xy"};
   return s;
 }
 
@@ -268,7 +267,6 @@ void register_scenes(Registry& r) {
         s->analytic_vx = [=](double y) { return g * std::sin(kw * y) / (nu * kw * kw); };
         s->steady_sine_mode = Scene::SineMode{kw, g / (nu * kw * kw)};
         s->x_invariant = true;
-        s->stress_components = {"xy"};
         finish_sound_speed(*s);
         return s;
       });

@@ -78,7 +78,6 @@ std::unique_ptr<Scene> make_taylor_green(const json& p) {
   s->position_perturbation = p.at("perturbation").get<double>();
   s->body_force = [](double, double) { return Vec2(0.0, 0.0); };
   s->x_invariant = false;
-  s->stress_components = {"xx", "xy", "yx", "yy"};
   s->analytic_peak = u;
   s->sound_speed = p.at("sound_speed_factor").get<double>() * u;  // PySPH: c0 = 10 U
   s->background_pressure = p.at("background_pressure_factor").get<double>() * s->rho0 * s->sound_speed * s->sound_speed;

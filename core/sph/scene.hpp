@@ -90,10 +90,8 @@ struct Scene {
   double background_pressure = 0.0;
   std::optional<VanDerWaalsEos> van_der_waals;
 
-  // What the engine computes: the flow is x-invariant (fields depend on y only) and the stress
-  // components needed (Poiseuille: T_xy only, §5.2).
+  // The flow is x-invariant (fields depend on y only).
   bool x_invariant = true;
-  std::vector<std::string> stress_components{"xy"};
 
   // The analytic steady velocity v_x(y) where known (empty otherwise), and its peak.
   std::function<double(double y)> analytic_vx;

@@ -342,7 +342,8 @@ std::vector<PairForce> SphEngine::pair_forces() {
       const Vec2 q_ij(pair_dx_[p], pair_dy_[p]);
       if (transport_) {  // the momentum force of the transport-velocity formulation (its background part aside)
         double fx, fy, bx, by;
-        transport_pair_terms(i, j, p, fx, fy, bx, by);
+        tvf_pair_force(tvf_input_[i], tvf_input_[j], pair_f_[p], pair_dx_[p], pair_dy_[p], transport_eps_,
+                       background_pressure_, fx, fy, bx, by);
         out.push_back({i, j, -q_ij, Vec2(fx, fy)});
         continue;
       }

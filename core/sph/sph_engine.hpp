@@ -115,10 +115,6 @@ class SphEngine {
   // The generalized wall condition: each wall particle's extrapolated pressure, density and ghost velocity from its
   // fluid neighbours (transport_velocity.hpp), into its tvf_input_.
   void apply_transport_wall_condition();
-  // m × the acceleration of listed pair p = (i, j)'s particle i due to j (fluid–fluid, or fluid–wall with either
-  // first), its background part apart.
-  void transport_pair_terms(std::int32_t i, std::int32_t j, std::size_t p, double& fx, double& fy, double& bx,
-                            double& by) const;
   void compute_transport_accelerations();
   void transport_step(double dt);
 

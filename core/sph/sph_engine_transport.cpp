@@ -72,22 +72,7 @@ void SphEngine::apply_transport_wall_condition() {
     const double rho = rho0 * ((p - scene_.background_pressure) / p0 + 1.0);
     // ps_.v of a fixed particle is its prescribed velocity v_w; the wall carries the ghost velocity 2 v_w − ṽ_w.
     tvf_input_[a] = {rho, p, vol2, mu_[a] / rho0 * rho, 2.0 * ps_.vx[a] - ufx, 2.0 * ps_.vy[a] - ufy,
-                     0.0, 0.0, 0.0, 0.0};
-  }
-}
-
-void SphEngine::transport_pair_terms(std::int32_t i, std::int32_t j, std::size_t p, double& fx, double& fy,
-                                     double& bx, double& by) const {
-  const TvfParticle* in = tvf_input_.data();
-  const double F = pair_f_[p], qx = pair_dx_[p], qy = pair_dy_[p];
-  const bool wi = ps_.fixed[i] != 0, wj = ps_.fixed[j] != 0;
-  if (wi == wj) {
-    tvf_pair_force(in[i], in[j], F, qx, qy, transport_eps_, background_pressure_, fx, fy, bx, by);
-  } else if (wj) {
-    tvf_pair_force<false>(in[i], in[j], F, qx, qy, transport_eps_, background_pressure_, fx, fy, bx, by);
-  } else {  // i the wall: the fluid particle j's terms (q_ji = −q), given to i as their opposite
-    tvf_pair_force<false>(in[j], in[i], F, -qx, -qy, transport_eps_, background_pressure_, fx, fy, bx, by);
-    fx = -fx, fy = -fy, bx = -bx, by = -by;
+                     0.0, 0.0, 0.0, 0.0, 0.0};
   }
 }
 
@@ -107,20 +92,14 @@ void SphEngine::compute_transport_accelerations() {
     auto& buf = thread_buf_[t];
     std::fill(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(4 * n), 0.0);
     const std::size_t r0 = list_.block_row[nb * t / nt], r1 = list_.block_row[nb * (t + 1) / nt];
-    if (transport_walls_)
-      pair_passes::force_rows_with_background(
-          g, r0, r1, F,
-          [&](int i, int j, std::size_t p, double& fx, double& fy, double& bx, double& by) {
-            transport_pair_terms(i, j, p, fx, fy, bx, by);
-          },
-          buf.data());
-    else
-      pair_passes::force_rows_with_background(
-          g, r0, r1, F,
-          [&](int i, int j, std::size_t p, double& fx, double& fy, double& bx, double& by) {
-            tvf_pair_force(in[i], in[j], F[p], qx[p], qy[p], eps, pb, fx, fy, bx, by);
-          },
-          buf.data());
+    // Fluid–fluid and fluid–wall pairs alike: a wall particle's inputs (apply_transport_wall_condition) make its
+    // pairs those of the generalized wall condition.
+    pair_passes::force_rows_with_background(
+        g, r0, r1, F,
+        [&](int i, int j, std::size_t p, double& fx, double& fy, double& bx, double& by) {
+          tvf_pair_force(in[i], in[j], F[p], qx[p], qy[p], eps, pb, fx, fy, bx, by);
+        },
+        buf.data());
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (std::size_t k = 0; k < m; ++k) {

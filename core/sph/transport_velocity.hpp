@@ -62,10 +62,13 @@ struct SphEngineOptions {
   double transport_background_pressure_factor = 1.0;  // p_b / (ρ0 c²); transport_velocity only
 };
 
-// What the TVF pair pass reads of a particle: density, pressure, V² = 1/n², η = ν ρ, velocity, and the extra stress
-// A = ρ v ⊗ (ṽ − v).
+// What the TVF pair pass reads of a particle: density, pressure, V² = 1/n², η = ν ρ, velocity, the extra stress
+// A = ρ v ⊗ (ṽ − v), and whether its pairs carry the extra-stress term: 1 for a fluid particle, 0 for a wall particle
+// of the generalized wall condition (a fluid–wall pair has no such term; the product of the two weights says so
+// without a branch, and multiplying by 1 changes no bit).
 struct TvfParticle {
   double rho, p, vol2, eta, vx, vy, axx, axy, ayx, ayy;
+  double stress_weight = 1.0;
 };
 
 // The particle's inputs at density n (mass m, pressure p, kinematic viscosity nu, velocity v, transport velocity
@@ -83,9 +86,9 @@ inline TvfParticle tvf_particle(double n, double m, double p, double nu, double 
 // background pressure pb: (fx, fy) = m_a × a's acceleration due to b (pressure, viscosity, extra stress), (bx, by) =
 // m_a × the background pressure's part of a's transport acceleration. Each term is written in the order of its
 // PySPH equation (named at each).
-// With extra_stress = false, the fluid–wall pair of the generalized wall condition (a the fluid particle, b the
-// wall particle carrying its ρ_w, p_w, V_w² and, as its velocity, the ghost velocity v_g).
-template <bool extra_stress = true>
+// A wall particle of the generalized wall condition carries its ρ_w, p_w, V_w², as its velocity the ghost velocity v_g,
+// and stress_weight 0: a fluid–wall pair then has no extra-stress term. The terms are antisymmetric to the bit: the
+// pair taken as (b, a, −q) gives the exact negatives (sums and products commute, negation distributes exactly).
 inline void tvf_pair_force(const TvfParticle& a, const TvfParticle& b, double F, double qx, double qy, double eps,
                            double pb, double& fx, double& fy, double& bx, double& by) {
   const double gx = F * qx, gy = F * qy;  // DWIJ
@@ -106,11 +109,12 @@ inline void tvf_pair_force(const TvfParticle& a, const TvfParticle& b, double F,
     fy += tmp * (a.vy - b.vy);
   }
   // MomentumEquationArtificialStress: Ax = ½ ((Axxi + Axxj) DWIJ[0] + (Axyi + Axyj) DWIJ[1]), tmp (Vi2 + Vj2) Ax.
-  if constexpr (extra_stress) {
+  {
+    const double s = a.stress_weight * b.stress_weight;
     const double sx = 0.5 * ((a.axx + b.axx) * gx + (a.axy + b.axy) * gy);
     const double sy = 0.5 * ((a.ayx + b.ayx) * gx + (a.ayy + b.ayy) * gy);
-    fx += vol * sx;
-    fy += vol * sy;
+    fx += vol * (sx * s);
+    fy += vol * (sy * s);
   }
   // MomentumEquationPressureGradient's background part (eq. 13): tmp = -pb (Vi2 + Vj2).
   tmp = -pb * vol;

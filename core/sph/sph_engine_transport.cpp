@@ -94,12 +94,20 @@ void SphEngine::compute_transport_accelerations() {
     const std::size_t r0 = list_.block_row[nb * t / nt], r1 = list_.block_row[nb * (t + 1) / nt];
     // Fluid–fluid and fluid–wall pairs alike: a wall particle's inputs (apply_transport_wall_condition) make its
     // pairs those of the generalized wall condition.
-    pair_passes::force_rows_with_background(
-        g, r0, r1, F,
-        [&](int i, int j, std::size_t p, double& fx, double& fy, double& bx, double& by) {
-          tvf_pair_force(in[i], in[j], F[p], qx[p], qy[p], eps, pb, fx, fy, bx, by);
-        },
-        buf.data());
+    if (transport_walls_)
+      pair_passes::force_rows_with_background(
+          g, r0, r1, F,
+          [&](int i, int j, std::size_t p, double& fx, double& fy, double& bx, double& by) {
+            tvf_pair_force<true>(in[i], in[j], F[p], qx[p], qy[p], eps, pb, fx, fy, bx, by);
+          },
+          buf.data());
+    else
+      pair_passes::force_rows_with_background(
+          g, r0, r1, F,
+          [&](int i, int j, std::size_t p, double& fx, double& fy, double& bx, double& by) {
+            tvf_pair_force<false>(in[i], in[j], F[p], qx[p], qy[p], eps, pb, fx, fy, bx, by);
+          },
+          buf.data());
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (std::size_t k = 0; k < m; ++k) {

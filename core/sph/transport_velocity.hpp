@@ -89,6 +89,8 @@ inline TvfParticle tvf_particle(double n, double m, double p, double nu, double 
 // A wall particle of the generalized wall condition carries its ρ_w, p_w, V_w², as its velocity the ghost velocity v_g,
 // and stress_weight 0: a fluid–wall pair then has no extra-stress term. The terms are antisymmetric to the bit: the
 // pair taken as (b, a, −q) gives the exact negatives (sums and products commute, negation distributes exactly).
+// walls = false skips the weights (no wall particles: every weight is 1).
+template <bool walls = true>
 inline void tvf_pair_force(const TvfParticle& a, const TvfParticle& b, double F, double qx, double qy, double eps,
                            double pb, double& fx, double& fy, double& bx, double& by) {
   const double gx = F * qx, gy = F * qy;  // DWIJ
@@ -110,11 +112,15 @@ inline void tvf_pair_force(const TvfParticle& a, const TvfParticle& b, double F,
   }
   // MomentumEquationArtificialStress: Ax = ½ ((Axxi + Axxj) DWIJ[0] + (Axyi + Axyj) DWIJ[1]), tmp (Vi2 + Vj2) Ax.
   {
-    const double s = a.stress_weight * b.stress_weight;
-    const double sx = 0.5 * ((a.axx + b.axx) * gx + (a.axy + b.axy) * gy);
-    const double sy = 0.5 * ((a.ayx + b.ayx) * gx + (a.ayy + b.ayy) * gy);
-    fx += vol * (sx * s);
-    fy += vol * (sy * s);
+    double sx = 0.5 * ((a.axx + b.axx) * gx + (a.axy + b.axy) * gy);
+    double sy = 0.5 * ((a.ayx + b.ayx) * gx + (a.ayy + b.ayy) * gy);
+    if constexpr (walls) {
+      const double s = a.stress_weight * b.stress_weight;
+      sx *= s;
+      sy *= s;
+    }
+    fx += vol * sx;
+    fy += vol * sy;
   }
   // MomentumEquationPressureGradient's background part (eq. 13): tmp = -pb (Vi2 + Vj2).
   tmp = -pb * vol;

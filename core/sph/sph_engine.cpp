@@ -89,6 +89,8 @@ SphEngine::SphEngine(const Scene& scene, ParticleSystem& particles, const SphEng
     background_pressure_ = options_.transport_background_pressure_factor * scene.rho0 * scene.sound_speed * scene.sound_speed;
     tvf_input_.assign(n, TvfParticle{});
     transport_walls_ = !walls.empty();
+    stress_weight_.assign(n, 1.0);
+    for (int a : walls) stress_weight_[a] = 0.0;
     bx_.assign(n, 0.0);
     by_.assign(n, 0.0);
   }
@@ -342,8 +344,8 @@ std::vector<PairForce> SphEngine::pair_forces() {
       const Vec2 q_ij(pair_dx_[p], pair_dy_[p]);
       if (transport_) {  // the momentum force of the transport-velocity formulation (its background part aside)
         double fx, fy, bx, by;
-        tvf_pair_force(tvf_input_[i], tvf_input_[j], pair_f_[p], pair_dx_[p], pair_dy_[p], transport_eps_,
-                       background_pressure_, fx, fy, bx, by);
+        tvf_pair_force<true>(tvf_input_[i], tvf_input_[j], pair_f_[p], pair_dx_[p], pair_dy_[p], transport_eps_,
+                             background_pressure_, fx, fy, bx, by, ps_.fixed[i] || ps_.fixed[j] ? 0.0 : 1.0);
         out.push_back({i, j, -q_ij, Vec2(fx, fy)});
         continue;
       }

@@ -125,6 +125,7 @@ class SphEngine {
   double transport_eps_ = 0.0;      // ε = 0.01 h² of the viscous term
   double background_pressure_ = 0.0;  // p_b
   std::vector<TvfParticle> tvf_input_;
+  std::vector<double> stress_weight_;  // transport velocity with walls: 1 for a moving particle, 0 for a fixed one
   std::vector<std::size_t> wall_pairs_;  // the listed fluid–wall pairs (transport velocity with fixed particles)
   bool transport_walls_ = false;         // transport velocity and some fixed particle
   // The wall condition's sums over a wall particle's fluid neighbours: Σ W, Σ v W, Σ p W, Σ ρ x_wf W.

@@ -72,7 +72,7 @@ void SphEngine::apply_transport_wall_condition() {
     const double rho = rho0 * ((p - scene_.background_pressure) / p0 + 1.0);
     // ps_.v of a fixed particle is its prescribed velocity v_w; the wall carries the ghost velocity 2 v_w − ṽ_w.
     tvf_input_[a] = {rho, p, vol2, mu_[a] / rho0 * rho, 2.0 * ps_.vx[a] - ufx, 2.0 * ps_.vy[a] - ufy,
-                     0.0, 0.0, 0.0, 0.0, 0.0};
+                     0.0, 0.0, 0.0, 0.0};
   }
 }
 
@@ -85,6 +85,7 @@ void SphEngine::compute_transport_accelerations() {
   const std::size_t nb = list_.block_row.size() - 1;
   const double *F = pair_f_.data(), *qx = pair_dx_.data(), *qy = pair_dy_.data();
   const TvfParticle* in = tvf_input_.data();
+  const double* sw = stress_weight_.data();
   const double eps = transport_eps_, pb = background_pressure_;
 #pragma omp parallel num_threads(static_cast <int>(thread_buf_.size()))
   {
@@ -98,14 +99,14 @@ void SphEngine::compute_transport_accelerations() {
       pair_passes::force_rows_with_background(
           g, r0, r1, F,
           [&](int i, int j, std::size_t p, double& fx, double& fy, double& bx, double& by) {
-            tvf_pair_force<true>(in[i], in[j], F[p], qx[p], qy[p], eps, pb, fx, fy, bx, by);
+            tvf_pair_force<true>(in[i], in[j], F[p], qx[p], qy[p], eps, pb, fx, fy, bx, by, sw[i] * sw[j]);
           },
           buf.data());
     else
       pair_passes::force_rows_with_background(
           g, r0, r1, F,
           [&](int i, int j, std::size_t p, double& fx, double& fy, double& bx, double& by) {
-            tvf_pair_force<false>(in[i], in[j], F[p], qx[p], qy[p], eps, pb, fx, fy, bx, by);
+            tvf_pair_force(in[i], in[j], F[p], qx[p], qy[p], eps, pb, fx, fy, bx, by);
           },
           buf.data());
 #pragma omp barrier

@@ -62,13 +62,10 @@ struct SphEngineOptions {
   double transport_background_pressure_factor = 1.0;  // p_b / (ρ0 c²); transport_velocity only
 };
 
-// What the TVF pair pass reads of a particle: density, pressure, V² = 1/n², η = ν ρ, velocity, the extra stress
-// A = ρ v ⊗ (ṽ − v), and whether its pairs carry the extra-stress term: 1 for a fluid particle, 0 for a wall particle
-// of the generalized wall condition (a fluid–wall pair has no such term; the product of the two weights says so
-// without a branch, and multiplying by 1 changes no bit).
+// What the TVF pair pass reads of a particle: density, pressure, V² = 1/n², η = ν ρ, velocity, and the extra stress
+// A = ρ v ⊗ (ṽ − v).
 struct TvfParticle {
   double rho, p, vol2, eta, vx, vy, axx, axy, ayx, ayy;
-  double stress_weight = 1.0;
 };
 
 // The particle's inputs at density n (mass m, pressure p, kinematic viscosity nu, velocity v, transport velocity
@@ -86,13 +83,14 @@ inline TvfParticle tvf_particle(double n, double m, double p, double nu, double 
 // background pressure pb: (fx, fy) = m_a × a's acceleration due to b (pressure, viscosity, extra stress), (bx, by) =
 // m_a × the background pressure's part of a's transport acceleration. Each term is written in the order of its
 // PySPH equation (named at each).
-// A wall particle of the generalized wall condition carries its ρ_w, p_w, V_w², as its velocity the ghost velocity v_g,
-// and stress_weight 0: a fluid–wall pair then has no extra-stress term. The terms are antisymmetric to the bit: the
-// pair taken as (b, a, −q) gives the exact negatives (sums and products commute, negation distributes exactly).
-// walls = false skips the weights (no wall particles: every weight is 1).
-template <bool walls = true>
+// A wall particle of the generalized wall condition carries its ρ_w, p_w, V_w² and, as its velocity, the ghost velocity
+// v_g; with walls = true the extra-stress term is multiplied by stress_weight, the product of the two particles'
+// weights (1 for a fluid particle, 0 for a wall particle: a fluid–wall pair has no such term, without a branch;
+// multiplying by 1 changes no bit). The terms are antisymmetric to the bit: the pair taken as (b, a, −q) gives the
+// exact negatives (sums and products commute, negation distributes exactly).
+template <bool walls = false>
 inline void tvf_pair_force(const TvfParticle& a, const TvfParticle& b, double F, double qx, double qy, double eps,
-                           double pb, double& fx, double& fy, double& bx, double& by) {
+                           double pb, double& fx, double& fy, double& bx, double& by, double stress_weight = 1.0) {
   const double gx = F * qx, gy = F * qy;  // DWIJ
   const double vol = a.vol2 + b.vol2;     // Vi2 + Vj2
   // MomentumEquationPressureGradient: pij = (rhoj p_i + rhoi p_j) / (rhoj + rhoi); tmp = -pij (Vi2 + Vj2).
@@ -115,9 +113,8 @@ inline void tvf_pair_force(const TvfParticle& a, const TvfParticle& b, double F,
     double sx = 0.5 * ((a.axx + b.axx) * gx + (a.axy + b.axy) * gy);
     double sy = 0.5 * ((a.ayx + b.ayx) * gx + (a.ayy + b.ayy) * gy);
     if constexpr (walls) {
-      const double s = a.stress_weight * b.stress_weight;
-      sx *= s;
-      sy *= s;
+      sx *= stress_weight;
+      sy *= stress_weight;
     }
     fx += vol * sx;
     fy += vol * sy;

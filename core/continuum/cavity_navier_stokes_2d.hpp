@@ -16,11 +16,10 @@
 //    φ pinned at cell 0 (the system is consistent: the walls' normal velocities are zero). After it D v is zero to
 //    round-off. Step Δt = min(cfl h_min / max(|v|, U), viscous_number h_min² / ν), as the periodic baseline.
 //  - nodes: the velocity at a cell centre is the mean of its two faces.
-// Checked against Ghia, Ghia & Shin (1982) at Re = 100, with the error falling at second order
-// (tests/numerical/test_cavity_navier_stokes_2d.cpp).
+// Checked at Re = 100 (tests/numerical/test_cavity_navier_stokes_2d.cpp): the centre lines self-converge at second
+// order and lie within the error of Ghia, Ghia & Shin's (1982) table of them.
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>
-#include <memory>
 #include <string>
 
 #include "core/continuum/continuum_navier_stokes_2d.hpp"

@@ -36,17 +36,18 @@ def _solid_outline(plt, ax, row, np, colour):
             ax.plot(xx[inside], yy[inside], "x", color=colour, ms=3, mew=0.8, label="coarse nodes in the solid")
 
 
-def draw(plt, row, path, title):
-    """Writes the figure of `row` to `path`. Two panels per field (direct, reduced) share one colour range; the
-    difference is in % of the averaged direct SPH's peak speed. One column of nodes (an x-invariant scene) is drawn
-    as profiles of v_x against y. Returns False (nothing written) when the row has no fields."""
+def draw(plt, row, path, title, model="reduced", model_name="reduced model", difference_name="v_red - v_direct"):
+    """Writes the figure of `row` to `path`. Two panels per field (direct, and the model's: `fields[model]`, named
+    `model_name`) share one colour range; the difference is in % of the averaged direct SPH's peak speed. One column
+    of nodes (an x-invariant scene) is drawn as profiles of v_x against y. Returns False (nothing written) when the
+    row has no such fields."""
     import numpy as np
     f = row.get("fields")
-    if not f or "reduced" not in f:
+    if not f or model not in f:
         return False
     nx, ny = node_count(row)
     has_direct = "direct_average" in f
-    rx, ry = _grid(np, f, "reduced", "vx"), _grid(np, f, "reduced", "vy")
+    rx, ry = _grid(np, f, model, "vx"), _grid(np, f, model, "vy")
     if has_direct:
         dx, dy = _grid(np, f, "direct_average", "vx"), _grid(np, f, "direct_average", "vy")
         peak = float(np.hypot(dx, dy).max()) or 1.0
@@ -57,13 +58,13 @@ def draw(plt, row, path, title):
         fig, (ax, ex) = plt.subplots(1, 2, figsize=(9.0, 4.0))
         if has_direct:
             ax.plot(y, dx[:, 0] / peak, "bs", mfc="none", label="averaged direct SPH")
-        ax.plot(y, rx[:, 0] / peak, "r.-", label="reduced model")
+        ax.plot(y, rx[:, 0] / peak, "r.-", label=model_name)
         ax.set_xlabel("y")
         ax.set_ylabel("v_x / peak")
         ax.legend(fontsize=8, loc="best")
         if has_direct:
             ex.plot(y, 100.0 * np.hypot(rx - dx, ry - dy)[:, 0] / peak, "r.-")
-            ex.set_ylabel("|v_red - v_direct| / peak (%)")
+            ex.set_ylabel(f"|{difference_name}| / peak (%)")
         else:
             ex.axis("off")
         ex.set_xlabel("y")
@@ -76,7 +77,7 @@ def draw(plt, row, path, title):
     dys = y[1] - y[0] if ny > 1 else dxs
     extent = [x[0] - 0.5 * dxs, x[-1] + 0.5 * dxs, y[0] - 0.5 * dys, y[-1] + 0.5 * dys]
     panels = ([(dx, dy, "averaged direct SPH |v| / peak")] if has_direct else []) + \
-        [(rx, ry, "reduced model |v| / peak")]
+        [(rx, ry, model_name + " |v| / peak")]
     vmax = max(float(np.hypot(u, v).max()) for u, v, _ in panels) / peak
     ncols = len(panels) + (1 if has_direct else 0)
     fig, axes = plt.subplots(1, ncols, figsize=(4.4 * ncols, 4.2), squeeze=False)
@@ -91,7 +92,7 @@ def draw(plt, row, path, title):
     if has_direct:
         diff = 100.0 * np.hypot(rx - dx, ry - dy) / peak
         im = axes[-1].imshow(diff, origin="lower", extent=extent, cmap="magma", interpolation="nearest")
-        axes[-1].set_title("|v_red - v_direct| / peak (%)", fontsize=9)
+        axes[-1].set_title(f"|{difference_name}| / peak (%)", fontsize=9)
         fig.colorbar(im, ax=axes[-1], fraction=0.046, pad=0.03, format="%.2g")
     for k, ax in enumerate(axes):
         _solid_outline(plt, ax, row, np, "w" if k < len(panels) else "c")

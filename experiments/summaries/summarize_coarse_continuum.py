@@ -5,11 +5,14 @@ mesh, experiments/kinds/coarse_continuum.cpp).
 Usage: python3 experiments/summaries/summarize_coarse_continuum.py TABLE.json OUT_PREFIX
 Writes OUT_PREFIX.md: a row per cell with the baseline's errors against the averaged direct SPH, the averaged exact
 field and the exact field, the reference's own error (floor), the baseline's amplitude on the mode, the transient,
-the cost and the speed-up. Every number is read from the table.
+the cost and the speed-up; for rows without an exact field (the cavity) a second table, the worst over the saved
+times by region, the reference's floor and the centre lines against Ghia's, and OUT_PREFIX_fields.png, the finest
+such row's fields (field_figure.py). Every number is read from the table.
 """
 import sys
 
-from summary_util import fmt, get, load_table, pct, spct
+import field_figure
+from summary_util import fmt, get, load_table, pct, pyplot_or_none, spct
 
 
 def error(row, ref="vs_averaged_direct_sph"):
@@ -56,9 +59,24 @@ def main(path, prefix):
             f"{fmt(total)} | {fmt(c.get('steps'))} | {fmt(c.get('direct_sph_wall_seconds'))} | "
             f"{fmt(c.get('speed_up'))} |")
     walled = [r for r in table["rows"] if get(r, "errors", "worst_over_saved_times") is not None]
+    drawn = None
     if walled:
         lines += walls_section(walled)
+        drawn = field_figure.figure_row(walled)
+        if drawn is not None and "averaged_baseline" in drawn["fields"]:
+            nx, ny = field_figure.node_count(drawn)
+            lines += ["", f"Figure `{prefix.rsplit('/', 1)[-1]}_fields.png`: the cell *{drawn['label']}* ({nx} x {ny} "
+                          "coarse nodes, the finest resolution) at the final time: the averaged direct SPH and the "
+                          "baseline seen through the averaging in one colour range, their difference in % of the "
+                          "direct field's peak."]
+        else:
+            drawn = None
     open(prefix + ".md", "w").write("\n".join(lines) + "\n")
+    plt = pyplot_or_none() if drawn is not None else None
+    if plt is not None:
+        field_figure.draw(plt, drawn, prefix + "_fields.png", f"{table['experiment']}: {drawn['label']}",
+                          model="averaged_baseline", model_name="baseline, averaged",
+                          difference_name="v_baseline - v_direct")
 
 
 def walls_section(rows):

@@ -6,5 +6,5 @@ namespace closurelab {
 void register_kernels(Registry& r);        // strategies/kernels/
 void register_deconvolvers(Registry& r);   // strategies/deconvolution/
 void register_quadratures(Registry& r);    // strategies/quadrature/
-void register_scenes(Registry& r);         // core/scenes.cpp
+void register_scenes(Registry& r);         // core/scenes/scenes.cpp
 }  // namespace closurelab

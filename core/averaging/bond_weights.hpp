@@ -1,7 +1,7 @@
 #pragma once
 // Bond-integral weights of one bond onto the nodes of a tensor mesh, with periodic images: the geometric
 // factor ∫₀¹ ψ_η(s(x − q_k) + (1 − s)(x − q_j)) ds of (2.13) (Appendix A), tabulated once per bond by the
-// stress quadratures (positions are intact, §5.2). Images as in core/averaging.cpp (for_nodes_within), so the
+// stress quadratures (positions are intact, §5.2). Images as in core/averaging/averaging.cpp (for_nodes_within), so the
 // exact quadrature reproduces average_particles' interaction stress to round-off.
 #include <omp.h>
 

@@ -8,7 +8,7 @@
 //
 // Every strategy is a one-parameter family of regularized solutions x(p) (α, truncation index, iteration
 // count or series order). `scan` visits that family from the most to the least regularized member; the
-// parameter-choice rules (core/parameter_choice.hpp) and the stability suite's "best parameter" search both
+// parameter-choice rules (core/closure/parameter_choice.hpp) and the stability suite's "best parameter" search both
 // walk that same scan, so a rule never has a second code path.
 #include <Eigen/Core>
 #include <functional>

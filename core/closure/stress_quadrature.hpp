@@ -61,7 +61,7 @@ class StressQuadrature {
   // configuration does not fit the scene, the nodes or the components.
   virtual void check(const Scene& scene, const TensorMesh2D& nodes, const std::vector<std::string>& components) const = 0;
   // Binds to the scene's lattice and SPH model, the averaging kernel, the nodes where T_int is wanted and
-  // the tensor components ("xx", "xy", "yx", "yy"; T_ab = Σ f_a d_b as in core/averaging.hpp).
+  // the tensor components ("xx", "xy", "yx", "yy"; T_ab = Σ f_a d_b as in core/averaging/averaging.hpp).
   // Throws ConfigError when the configuration does not fit the scene (e.g. N/N_C not dividing the lattice).
   virtual void setup(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& nodes,
                      const std::vector<std::string>& components) = 0;

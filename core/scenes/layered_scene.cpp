@@ -1,8 +1,8 @@
 // Scene "layered-two-phase" (§7, DESIGN.md §5): a channel of width L between walls of 3η' (whole lattice rows)
 // outside it, so the box is L + 2·3η' high; n_y fluid rows (ε' = L/n_y); layers of the less viscous fluid
 // (μ = 100, phase 1) in the more viscous one (μ = 200, phase 0); equal densities; uniform force g along x;
-// van der Waals EOS (7.1) with k* across phases (core/equation_of_state.hpp). The analytic steady solution is
-// piecewise parabolic (LayeredChannelFlow, core/analytic.hpp) with the interfaces between lattice rows.
+// van der Waals EOS (7.1) with k* across phases (core/sph/equation_of_state.hpp). The analytic steady solution is
+// piecewise parabolic (LayeredChannelFlow, core/scenes/analytic.hpp) with the interfaces between lattice rows.
 #include "core/scenes/layered_scene.hpp"
 
 #include <cmath>

@@ -23,6 +23,6 @@ struct LayerLayout {
 // leaves no row of the more viscous fluid between it and a wall.
 LayerLayout layered_layout(const json& params);
 
-void register_layered_scene(Registry& r);  // called from register_scenes (core/scenes.cpp)
+void register_layered_scene(Registry& r);  // called from register_scenes (core/scenes/scenes.cpp)
 
 }  // namespace closurelab

@@ -1,6 +1,6 @@
 #pragma once
 // Equations of state of the direct SPH model. One definition of each, used by the engine
-// (core/sph_engine.cpp) and by the stress quadratures.
+// (core/sph/sph_engine.cpp) and by the stress quadratures.
 //
 // Weakly compressible (single-phase scenes, the default): P = c² (m n − ρ0) + P_b.
 //

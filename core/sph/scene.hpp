@@ -1,7 +1,7 @@
 #pragma once
 // A scene (DESIGN.md §1, §5): geometry, walls, phases, body force, the SPH discretization, the stress
 // components the engine must compute, and the analytic steady solution where one exists.
-// Scenes are registered by name in the registry's "scene" family (core/scenes.cpp).
+// Scenes are registered by name in the registry's "scene" family (core/scenes/scenes.cpp).
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -66,7 +66,7 @@ struct Scene {
   std::function<int(double y)> phase_at;
   // Heights of the phase interfaces inside the channel (between lattice rows), ascending; empty if one phase.
   std::vector<double> interfaces;
-  // μ_ij of (5.1) for unlike particles (core/sph_pair_force.hpp).
+  // μ_ij of (5.1) for unlike particles (core/sph/sph_pair_force.hpp).
   PairViscosityMean pair_viscosity_mean = PairViscosityMean::arithmetic;
   std::function<double(double y)> force_x;  // body force per unit mass along x
   // Scenes whose force depends on x as well (not x-invariant) declare the whole body force per unit mass at a
@@ -86,7 +86,7 @@ struct Scene {
   SmoothingKernel smoothing_kernel() const { return SmoothingKernel(smoothing_type, h); }
   double sound_speed = 0.0;  // >= 10x the peak velocity
   // Equation of state: the weakly compressible P = c²(m n − ρ0) + background_pressure unless van_der_waals
-  // is set (7.1) (core/equation_of_state.hpp).
+  // is set (7.1) (core/sph/equation_of_state.hpp).
   double background_pressure = 0.0;
   std::optional<VanDerWaalsEos> van_der_waals;
 

@@ -1,6 +1,6 @@
 #pragma once
 // An experiment kind: how one cell of an experiment matrix is validated and run. The runner
-// (experiments/runner.hpp) expands the matrix, validates every cell with `resolve` before running any,
+// (experiments/runner/runner.hpp) expands the matrix, validates every cell with `resolve` before running any,
 // then calls `run` per cell and writes the rows.
 #include <functional>
 #include <memory>

@@ -2,7 +2,7 @@
 // discretizations of §4.2, the cut-off Gaussian, or the classic shaw / deriv2 / phillips problems), a relative
 // noise level with a recorded seed, and a deconvolver with its parameter rule. The row reports the rule's error,
 // the best error over the method's regularized family and their ratio, κ(A), finiteness, status and cost
-// (strategies/deconvolution/stability_case.hpp does the work; the gtests use the same function).
+// (experiments/testproblems/stability_case.hpp does the work; the gtests use the same function).
 //
 // Cell: {"problem": {"name": ..., ...}, "method": {"name": ..., "rule": ...}, "noise": 0.01, "seed": 12345,
 //        "scan_best": true}

@@ -3,7 +3,7 @@
 // and bond vectors ρ (5.25), with R on a coarse grid of N_C nodes and ρ over the fine lattice offsets of
 // the SPH support (|ρ_j| < support):
 //   T_int(x) ≈ ½ Σ_β (N/N_C) Σ_j f(q_β − ρ_j/2, q_β + ρ_j/2) ⊗ ρ_j ∫₀¹ ψ_η(s(x − q_β − ρ_j/2) + (1 − s)(x − q_β + ρ_j/2)) ds,
-// with f the pair force (5.1) (core/sph_pair_force.hpp) on the virtual particle at q_β − ρ_j/2 due to the
+// with f the pair force (5.1) (core/sph/sph_pair_force.hpp) on the virtual particle at q_β − ρ_j/2 due to the
 // one at q_β + ρ_j/2 (the convention of (2.13): f on j due to k, tensor with q_k − q_j), velocities from the
 // sampler, the constant number density n* and pressure P* of §5.2 and the viscosity at each end.
 // Prefactor: f̄ of (5.24) is the pair force times the pair density n*², and dx' dx'' = dR dρ; the lattice
@@ -75,7 +75,7 @@ class CoarseQuadrature : public StressQuadrature {
     std::int32_t sa, sb;  // sample indices of the two ends (−1: a wall site, at rest)
     Vec2 rho;             // ρ = q_b − q_a
     double F;             // w'(|ρ|)/|ρ|
-    double mu_ab;         // μ_ab of (5.1): pair_viscosity of the two ends' phases (core/sph_pair_force.hpp)
+    double mu_ab;         // μ_ab of (5.1): pair_viscosity of the two ends' phases (core/sph/sph_pair_force.hpp)
     double p_over_n2;     // P*/n*² of each end, plus the unlike-pair excess of (7.1) when the phases differ
     double weight;  // ½ (N/N_C share) per unit bond integral (x-integrated: per unit 1D bond integral)
     double mass;    // ½ × the particles the base site stands for (its share of the virial)

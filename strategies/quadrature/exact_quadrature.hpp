@@ -1,7 +1,7 @@
 #pragma once
 // The exact stress quadrature: the pair sum (2.13) over every interacting particle pair of the scene's
 // lattice, T_int(x) = Σ_(j,k) f_jk ⊗ (q_k − q_j) ∫₀¹ ψ_η(s(x − q_k) + (1 − s)(x − q_j)) ds, with periodic
-// images as in core/averaging.cpp. Positions are intact (§5.2): setup finds the pairs once and tabulates
+// images as in core/averaging/averaging.cpp. Positions are intact (§5.2): setup finds the pairs once and tabulates
 // the (node, pair) bond weights (sparse, CSR by pair); evaluate puts the sampled velocities on the
 // particles (held particles at rest), takes the pair forces (5.1) from the direct SPH engine (so wall
 // models, densities and pressures are those of direct SPH) and forms the weighted sum: O(N) per call.

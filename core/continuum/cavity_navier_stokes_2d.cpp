@@ -16,11 +16,19 @@ bool walled_axis(const UniformMesh1D& a) { return !a.periodic && a.count >= 4 &&
 
 CavityNavierStokes2D::CavityNavierStokes2D(TensorMesh2D mesh, double density, double viscosity, double lid_speed,
                                            CoarseNavierStokes2DOptions options)
-    : mesh_(std::move(mesh)), nx_(mesh_.nx()), ny_(mesh_.ny()), hx_(mesh_.x.spacing), hy_(mesh_.y.spacing),
-      rho_(density), nu_(viscosity / density), lid_(lid_speed), opt_(options) {
+    : mesh_(std::move(mesh)),
+      nx_(mesh_.nx()),
+      ny_(mesh_.ny()),
+      hx_(mesh_.x.spacing),
+      hy_(mesh_.y.spacing),
+      rho_(density),
+      nu_(viscosity / density),
+      lid_(lid_speed),
+      opt_(options) {
   if (!walled_axis(mesh_.x) || !walled_axis(mesh_.y))
-    throw std::invalid_argument("cavity Navier-Stokes: the mesh must be periodic in neither direction, with at least 4 "
-                                "cells along a side");
+    throw std::invalid_argument(
+        "cavity Navier-Stokes: the mesh must be periodic in neither direction, with at least 4 "
+        "cells along a side");
   if (!(density > 0.0) || !(viscosity > 0.0) || !std::isfinite(lid_speed))
     throw std::invalid_argument("cavity Navier-Stokes: density and viscosity must be positive, the lid speed finite");
   if (!(opt_.cfl > 0.0) || !(opt_.viscous_number > 0.0) || !(opt_.max_time_step > 0.0))
@@ -45,7 +53,8 @@ CavityNavierStokes2D::CavityNavierStokes2D(TensorMesh2D mesh, double density, do
   Eigen::SparseMatrix<double> a(cells - 1, cells - 1);
   a.setFromTriplets(t.begin(), t.end());
   poisson_.compute(a);
-  if (poisson_.info() != Eigen::Success) throw std::runtime_error("cavity Navier-Stokes: the Poisson factorization failed");
+  if (poisson_.info() != Eigen::Success)
+    throw std::runtime_error("cavity Navier-Stokes: the Poisson factorization failed");
   u_ = Eigen::VectorXd::Zero((nx_ + 1) * ny_);
   v_ = Eigen::VectorXd::Zero(nx_ * (ny_ + 1));
   p_ = Eigen::VectorXd::Zero(cells);
@@ -53,13 +62,13 @@ CavityNavierStokes2D::CavityNavierStokes2D(TensorMesh2D mesh, double density, do
 }
 
 double CavityNavierStokes2D::u_at(const Eigen::VectorXd& u, int i, int j) const {
-  if (j < 0) return -u[i];                                                 // ghost below the bottom wall (at rest)
-  if (j >= ny_) return 2.0 * lid_ - u[(ny_ - 1) * (nx_ + 1) + i];          // ghost above the lid
+  if (j < 0) return -u[i];                                         // ghost below the bottom wall (at rest)
+  if (j >= ny_) return 2.0 * lid_ - u[(ny_ - 1) * (nx_ + 1) + i];  // ghost above the lid
   return u[j * (nx_ + 1) + i];
 }
 
 double CavityNavierStokes2D::v_at(const Eigen::VectorXd& v, int i, int j) const {
-  if (i < 0) return -v[j * nx_];             // ghost left of the left wall
+  if (i < 0) return -v[j * nx_];               // ghost left of the left wall
   if (i >= nx_) return -v[j * nx_ + nx_ - 1];  // ghost right of the right wall
   return v[j * nx_ + i];
 }
@@ -100,8 +109,8 @@ Eigen::VectorXd CavityNavierStokes2D::face_divergence(const Eigen::VectorXd& u, 
   Eigen::VectorXd d(nx_ * ny_);
   for (int j = 0; j < ny_; ++j)
     for (int i = 0; i < nx_; ++i)
-      d[j * nx_ + i] = (u[j * (nx_ + 1) + i + 1] - u[j * (nx_ + 1) + i]) / hx_ +
-                       (v[(j + 1) * nx_ + i] - v[j * nx_ + i]) / hy_;
+      d[j * nx_ + i] =
+          (u[j * (nx_ + 1) + i + 1] - u[j * (nx_ + 1) + i]) / hx_ + (v[(j + 1) * nx_ + i] - v[j * nx_ + i]) / hy_;
   return d;
 }
 
@@ -185,12 +194,14 @@ Eigen::Vector2d CavityNavierStokes2D::velocity_at(double x, double y) const {
   if (sy > ny_) return {lid_, 0.0};
   if (sx < 0.0 || sx > nx_ || sy < 0.0) return {0.0, 0.0};
   // v_x on faces at (i, j + ½): i = floor(sx), j = floor(sy − ½) in −1..ny − 1.
-  const int iu = std::min(static_cast<int>(sx), nx_ - 1), ju = std::clamp(static_cast<int>(std::floor(sy - 0.5)), -1, ny_ - 1);
+  const int iu = std::min(static_cast<int>(sx), nx_ - 1),
+            ju = std::clamp(static_cast<int>(std::floor(sy - 0.5)), -1, ny_ - 1);
   const double au = sx - iu, bu = sy - 0.5 - ju;
   const double vx = (1 - au) * (1 - bu) * u_at(u_, iu, ju) + au * (1 - bu) * u_at(u_, iu + 1, ju) +
                     (1 - au) * bu * u_at(u_, iu, ju + 1) + au * bu * u_at(u_, iu + 1, ju + 1);
   // v_y on faces at (i + ½, j): i = floor(sx − ½) in −1..nx − 1, j = floor(sy).
-  const int iv = std::clamp(static_cast<int>(std::floor(sx - 0.5)), -1, nx_ - 1), jv = std::min(static_cast<int>(sy), ny_ - 1);
+  const int iv = std::clamp(static_cast<int>(std::floor(sx - 0.5)), -1, nx_ - 1),
+            jv = std::min(static_cast<int>(sy), ny_ - 1);
   const double av = sx - 0.5 - iv, bv = sy - jv;
   const double vy = (1 - av) * (1 - bv) * v_at(v_, iv, jv) + av * (1 - bv) * v_at(v_, iv + 1, jv) +
                     (1 - av) * bv * v_at(v_, iv, jv + 1) + av * bv * v_at(v_, iv + 1, jv + 1);

@@ -69,20 +69,20 @@ class CoarseContinuum2D : public ExperimentKind {
   }
 
   std::vector<KindSection> sections() const override {
-    return {
-        {"scene",
-         "the scene (required; doubly periodic with a cellular mode or a Taylor-Green vortex, or the lid-driven cavity)",
-         "scene",
-         {}},
-        {"kernel",
-         "the averaging kernel (initial average, mesh, direct SPH average); its eta the scene's",
-         "kernel",
-         {}},
-        {"solver", "the continuum solver", "", solver_schema()},
-        {"reference", "the direct SPH reference", "", reference_schema()},
-        {"transient", "snapshots of both solvers", "", transient_schema()},
-        {"timing", "how the baseline run is repeated for its time (minimum, median, spread)", "",
-         reduced_timing_schema()}};
+    return {{"scene",
+             "the scene (required; doubly periodic with a cellular mode or a Taylor-Green vortex, or the lid-driven "
+             "cavity)",
+             "scene",
+             {}},
+            {"kernel",
+             "the averaging kernel (initial average, mesh, direct SPH average); its eta the scene's",
+             "kernel",
+             {}},
+            {"solver", "the continuum solver", "", solver_schema()},
+            {"reference", "the direct SPH reference", "", reference_schema()},
+            {"transient", "snapshots of both solvers", "", transient_schema()},
+            {"timing", "how the baseline run is repeated for its time (minimum, median, spread)", "",
+             reduced_timing_schema()}};
   }
 
   json resolve(const json& cell, const std::string& path, const Registry& reg) const override {
@@ -212,7 +212,8 @@ class CoarseContinuum2D : public ExperimentKind {
     json errors = json::object();
     json fields = {{"x", mesh.x.nodes()}, {"y", mesh.y.nodes()}, {"baseline", field_json(final_field)}};
     // The exact field on the mode (periodic scenes): e the kernel's symbol at the mode, unit its shape.
-    const double k = exact_mode ? mode_wavenumber(*scene) : 0.0, e = exact_mode ? kernel->symbol(Vec2(k, k) / (2.0 * M_PI)) : 0.0;
+    const double k = exact_mode ? mode_wavenumber(*scene) : 0.0,
+                 e = exact_mode ? kernel->symbol(Vec2(k, k) / (2.0 * M_PI)) : 0.0;
     const Field unit = exact_mode ? mode_shape(*scene, mesh) : Field{};
     const auto averaged_exact = [&](double t) { return scaled(unit, e * mode_amplitude(*scene, t)); };
     if (exact_mode) {
@@ -243,8 +244,8 @@ class CoarseContinuum2D : public ExperimentKind {
         fields["averaged_fine_continuum"] = field_json(fine.at_target);
         if (!views.centrelines.is_null()) errors["centrelines"] = views.centrelines;
         if (!fine.centrelines.is_null()) errors["fine_continuum_centrelines"] = fine.centrelines;
-        errors["averaged_baseline_vs_averaged_fine_continuum"] = norms(views.at_target, fine.at_target, scale,
-                                                                       interior_nodes(*scene, mesh));
+        errors["averaged_baseline_vs_averaged_fine_continuum"] =
+            norms(views.at_target, fine.at_target, scale, interior_nodes(*scene, mesh));
       }
     }
     json cost = {{"steps", steps},
@@ -269,7 +270,8 @@ class CoarseContinuum2D : public ExperimentKind {
       const double direct_time = direct->record.at("time").get<double>();
       const std::vector<int> interior = interior_nodes(*scene, mesh);
       errors["vs_averaged_direct_sph"] = norms(final_field, direct_field, scale, interior);
-      if (exact_mode) errors["direct_sph_vs_averaged_analytic"] = norms(direct_field, averaged_exact(direct_time), scale);
+      if (exact_mode)
+        errors["direct_sph_vs_averaged_analytic"] = norms(direct_field, averaged_exact(direct_time), scale);
       if (replayed) {
         errors["averaged_baseline_vs_averaged_direct_sph"] = norms(views.at_target, direct_field, scale, interior);
         errors["direct_sph_vs_averaged_fine_continuum"] = norms(direct_field, fine.at_target, scale, interior);
@@ -294,7 +296,8 @@ class CoarseContinuum2D : public ExperimentKind {
           snap["baseline_vs_averaged_direct_sph"] = norms(b, dsnap, scale, interior);
           keep_worst("baseline_vs_averaged_direct_sph", snap["baseline_vs_averaged_direct_sph"]);
           // Against the averaged direct field's own peak at this time (as reduced_model_2d reports it).
-          snap["baseline_vs_averaged_direct_sph_at_its_peak"] = norms(b, dsnap, vector_magnitudes(dsnap.x, dsnap.y).maxCoeff());
+          snap["baseline_vs_averaged_direct_sph_at_its_peak"] =
+              norms(b, dsnap, vector_magnitudes(dsnap.x, dsnap.y).maxCoeff());
           if (exact_mode) {
             const Field avg_exact = averaged_exact(t);
             snap["baseline_vs_averaged_analytic"] = norms(b, avg_exact, scale);

@@ -32,7 +32,9 @@ double mode_amplitude(const Scene& s, double t) {
 
 NodeVelocity scaled(const NodeVelocity& f, double a) { return NodeVelocity{a * f.x, a * f.y}; }
 
-double mode_wavenumber(const Scene& s) { return s.taylor_green ? s.taylor_green->wavenumber : s.cellular_mode->wavenumber; }
+double mode_wavenumber(const Scene& s) {
+  return s.taylor_green ? s.taylor_green->wavenumber : s.cellular_mode->wavenumber;
+}
 
 json norms(const NodeVelocity& u, const NodeVelocity& ref, double scale, const std::vector<int>& interior) {
   const json n = vector_error_norms(u.x, u.y, ref.x, ref.y, scale).to_json();

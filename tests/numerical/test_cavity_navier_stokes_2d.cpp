@@ -120,7 +120,8 @@ TEST(CavityNavierStokes2D, AtRestWithoutALidStaysAtRest) {
 }
 
 TEST(CavityNavierStokes2D, RefusesAPeriodicOrTinyMesh) {
-  const UniformMesh1D p = UniformMesh1D::cell_centred(0.0, 1.0, 8, true), w = UniformMesh1D::cell_centred(0.0, 1.0, 3, false);
+  const UniformMesh1D p = UniformMesh1D::cell_centred(0.0, 1.0, 8, true),
+                      w = UniformMesh1D::cell_centred(0.0, 1.0, 3, false);
   EXPECT_THROW(CavityNavierStokes2D(TensorMesh2D{p, p}, 1.0, 0.01, 1.0), std::invalid_argument);
   EXPECT_THROW(CavityNavierStokes2D(TensorMesh2D{w, w}, 1.0, 0.01, 1.0), std::invalid_argument);
   EXPECT_THROW(CavityNavierStokes2D(cavity_mesh(8), 1.0, 0.0, 1.0), std::invalid_argument);
@@ -140,7 +141,8 @@ TEST(CavityNavierStokes2D, TheCavitySceneGetsItsMeshAndBaseline) {
 TEST(CoarseContinuumKind, ScoresTheCavityByGhiaAndItsFineMesh) {
   // The kind (experiments/kinds/coarse_continuum.cpp) on the cavity at Re = 100 without a direct reference, to
   // t = 10 L/U: the 16 × 16 baseline and its stand-in for the exact field, the same solver on 128 × 128. The fine one
-  // lies as close to Ghia's table as the solver's own test finds at fine meshes (~0.008 U), the coarse one further (~0.019 U).
+  // lies as close to Ghia's table as the solver's own test finds at fine meshes (~0.008 U), the coarse one further
+  // (~0.019 U).
   const Registry& reg = builtin_registry();
   const ExperimentKind& kind = reg.experiments.get("coarse_continuum_2d", "/kind");
   const json cell = {{"scene", {{"name", "lid-driven-cavity"}, {"re", 100}, {"n", 32}}},

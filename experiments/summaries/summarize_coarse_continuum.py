@@ -7,7 +7,8 @@ Writes OUT_PREFIX.md: a row per cell with the baseline's errors against the aver
 field and the exact field, the reference's own error (floor), the baseline's amplitude on the mode, the transient,
 the cost and the speed-up; for rows without an exact field (the cavity) a second table, the worst over the saved
 times by region, the reference's floor and the centre lines against Ghia's, and OUT_PREFIX_fields.png, the finest
-such row's fields (field_figure.py). Every number is read from the table.
+such row's fields (field_figure.py) and OUT_PREFIX_transient.png, their errors against the saved time. Every number
+is read from the table.
 """
 import sys
 
@@ -71,12 +72,44 @@ def main(path, prefix):
                           "direct field's peak."]
         else:
             drawn = None
+    if walled:
+        lines += ["", f"Figure `{prefix.rsplit('/', 1)[-1]}_transient.png`: the all-node error at each saved time, "
+                      "per cell: the baseline's node values and the baseline seen through the averaging against the "
+                      "averaged direct SPH, and the floor (the averaged direct SPH against the finer mesh's "
+                      "solution seen through the averaging)."]
     open(prefix + ".md", "w").write("\n".join(lines) + "\n")
-    plt = pyplot_or_none() if drawn is not None else None
+    plt = pyplot_or_none() if walled else None
     if plt is not None:
+        transient_figure(plt, walled, prefix + "_transient.png", table["experiment"])
+    if plt is not None and drawn is not None:
         field_figure.draw(plt, drawn, prefix + "_fields.png", f"{table['experiment']}: {drawn['label']}",
                           model="averaged_baseline", model_name="baseline, averaged",
                           difference_name="v_baseline - v_direct")
+
+
+def transient_figure(plt, rows, path, title):
+    """The all-node error against the saved time for each walled row: node values, averaged view, floor."""
+    styles = [("baseline_vs_averaged_direct_sph", "-", "baseline nodes"),
+              ("averaged_baseline_vs_averaged_direct_sph", "--", "baseline averaged"),
+              ("direct_sph_vs_averaged_fine_continuum", ":", "floor (direct vs finer mesh)")]
+    fig, ax = plt.subplots(figsize=(7.0, 4.2))
+    for k, r in enumerate(rows):
+        colour = f"C{k}"
+        snaps = [s for s in r.get("transient", []) if "time" in s]
+        for key, ls, name in styles:
+            pts = [(s["time"], get(s, key, "all_nodes", "max_rel")) for s in snaps]
+            pts = [(t, 100.0 * e) for t, e in pts if e is not None]
+            if pts:
+                ax.plot([t for t, _ in pts], [e for _, e in pts], ls, color=colour, marker=".",
+                        label=f"{r['label']}: {name}")
+    ax.set_xlabel("t (in units of the scene's time scale)")
+    ax.set_ylabel("max over all nodes, % of the velocity scale")
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.set_title(title, fontsize=9)
+    fig.savefig(path, dpi=110, bbox_inches="tight")
+    plt.close(fig)
 
 
 def walls_section(rows):

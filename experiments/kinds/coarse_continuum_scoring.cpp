@@ -121,16 +121,43 @@ bool replay_baseline_views(const Scene& scene, const AveragingKernel& kernel, co
   return true;
 }
 
-std::unique_ptr<ContinuumNavierStokes2D> refined_baseline_at_rest(const Scene& scene, const TensorMesh2D& mesh,
-                                                                  int refinement, CoarseNavierStokes2DOptions options) {
-  const auto finer = [refinement](const UniformMesh1D& a) {
-    return UniformMesh1D::cell_centred(a.origin - 0.5 * a.spacing, a.spacing * a.count, a.count * refinement,
-                                       a.periodic);
+json worst_over_saved_times(const json& transient) {
+  json worst = json::object();
+  for (const char* key : {"baseline_vs_averaged_direct_sph", "averaged_baseline_vs_averaged_direct_sph",
+                          "direct_sph_vs_averaged_fine_continuum"}) {
+    worst[key] = json::object();
+    for (const json& snap : transient)
+      if (snap.contains(key))
+        for (const char* region : {"all_nodes", "interior_nodes"})
+          if (snap[key].contains(region))
+            worst[key][region] = std::max(worst[key].value(region, 0.0), snap[key][region]["max_rel"].get<double>());
+  }
+  return worst;
+}
+
+bool walled_views(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& mesh,
+                  CoarseNavierStokes2DOptions options, const std::vector<double>& times, double target, double scale,
+                  BaselineViews& coarse, BaselineViews& fine, json& fields, json& errors) {
+  const auto finer = [](const UniformMesh1D& a) {
+    return UniformMesh1D::cell_centred(a.origin - 0.5 * a.spacing, a.spacing * a.count,
+                                       a.count * kFineContinuumRefinement, a.periodic);
   };
-  const TensorMesh2D fine{finer(mesh.x), finer(mesh.y)};
-  auto ns = continuum_baseline_for(scene, fine, options);
-  ns->set_velocity(Eigen::VectorXd::Zero(fine.size()), Eigen::VectorXd::Zero(fine.size()));
-  return ns;
+  const TensorMesh2D fine_mesh{finer(mesh.x), finer(mesh.y)};
+  auto ns = continuum_baseline_for(scene, mesh, options);
+  auto fine_ns = continuum_baseline_for(scene, fine_mesh, options);
+  ns->set_velocity(Eigen::VectorXd::Zero(mesh.size()), Eigen::VectorXd::Zero(mesh.size()));
+  fine_ns->set_velocity(Eigen::VectorXd::Zero(fine_mesh.size()), Eigen::VectorXd::Zero(fine_mesh.size()));
+  if (!replay_baseline_views(scene, kernel, mesh, *ns, times, target, coarse) ||
+      !replay_baseline_views(scene, kernel, mesh, *fine_ns, times, target, fine))
+    return false;
+  const auto field_json = [](const NodeVelocity& f) { return json{{"vx", f.x}, {"vy", f.y}}; };
+  fields["averaged_baseline"] = field_json(coarse.at_target);
+  fields["averaged_fine_continuum"] = field_json(fine.at_target);
+  if (!coarse.centrelines.is_null()) errors["centrelines"] = coarse.centrelines;
+  if (!fine.centrelines.is_null()) errors["fine_continuum_centrelines"] = fine.centrelines;
+  errors["averaged_baseline_vs_averaged_fine_continuum"] =
+      norms(coarse.at_target, fine.at_target, scale, interior_nodes(scene, mesh));
+  return true;
 }
 
 }  // namespace closurelab

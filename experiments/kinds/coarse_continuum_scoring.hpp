@@ -53,13 +53,21 @@ bool replay_baseline_views(const Scene& scene, const AveragingKernel& kernel, co
                            ContinuumNavierStokes2D& baseline, const std::vector<double>& times, double target,
                            BaselineViews& out);
 
-// The stand-in for the exact field of a scene without one (the cavity): the same baseline on a mesh `refinement`
-// times finer over the same rectangle, at rest at time 0 (the cavity's start). At refinement 8 of the cavity's 16 ×
-// 16 it is within ~1e-3 U of the converged solution (tests/numerical/test_cavity_navier_stokes_2d.cpp: the change
-// from 64 to 128 cells is of that size), so the averaged direct SPH's distance from its averaged view is the
-// reference's own error, and the coarse baseline's distance from it the coarse mesh's.
+// A scene without an exact field (the cavity), its baseline started at rest: replays of the baseline on `mesh` and of
+// the same solver on a mesh kFineContinuumRefinement times finer over the same rectangle (the stand-in for the exact
+// field: at refinement 8 of the cavity's 16 × 16 it is within ~1e-3 U of the converged solution,
+// tests/numerical/test_cavity_navier_stokes_2d.cpp, so the averaged direct SPH's distance from its averaged view is
+// the reference's own error, and the coarse baseline's distance from it the coarse mesh's). Their views go to
+// `coarse` and `fine`; `fields` gains averaged_baseline and averaged_fine_continuum at `target`; `errors` gains
+// centrelines and fine_continuum_centrelines (with a Ghia table) and averaged_baseline_vs_averaged_fine_continuum
+// (norms relative to `scale`, interior nodes apart). False (nothing written) if a replay fails.
 constexpr int kFineContinuumRefinement = 8;
-std::unique_ptr<ContinuumNavierStokes2D> refined_baseline_at_rest(const Scene& scene, const TensorMesh2D& mesh,
-                                                                  int refinement, CoarseNavierStokes2DOptions options);
+// The worst max_rel over a transient's saved times (its array of snapshots) per region (all_nodes, interior_nodes) of
+// each comparison of a scene without an exact field: baseline_vs_averaged_direct_sph,
+// averaged_baseline_vs_averaged_direct_sph, direct_sph_vs_averaged_fine_continuum (an empty object where none).
+json worst_over_saved_times(const json& transient);
+bool walled_views(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& mesh,
+                  CoarseNavierStokes2DOptions options, const std::vector<double>& times, double target, double scale,
+                  BaselineViews& coarse, BaselineViews& fine, json& fields, json& errors);
 
 }  // namespace closurelab

@@ -10,135 +10,11 @@
 #include "core/base/memory_limit.hpp"
 #include "core/closure/reconstruction.hpp"
 #include "core/continuum/coarse_navier_stokes_2d.hpp"
+#include "core/continuum/continuum_navier_stokes_2d.hpp"
+#include "core/reduced/walled_box_2d.hpp"
 #include "core/sph/sph_run.hpp"
 
 namespace closurelab {
-
-ParamSchema meso_solver_2d_schema() {
-  const MesoSolver2DOptions d;  // the defaults
-  ParamSchema schema{
-      number_param("kappa", d.kappa, "time-step coefficient of (5.21)-(5.22) (2D: half the 1D default)", 0.0, 1.0, true),
-      number_param("spacing_over_eta", d.spacing_over_eta, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0),
-      integer_param("divergence_order", d.divergence_order,
-                    "order of the staggered face-flux difference: 2 or 4 (both conservative, same face values)", 2, 4),
-      string_param("equations", name_of(d.equations),
-                   "momentum: the linear model (density and pressure the lattice's, no convective stress); "
-                   "mass_momentum: the averaged balances (2.10)-(2.11) in (rho, rho v), with the convective flux of "
-                   "the closure's velocities (2.12) and the pressure of the coarse density; incompressible: the convective flux and "
-                   "the pressure as the multiplier of a discrete projection (core/reduced/meso_solver_2d.hpp)",
-                   names_of<CoarseEquations>()),
-      bool_param("transport", d.transport,
-                 "mass_momentum: the mass flux (2.10) and the convective flux (2.11)-(2.12) (false: rho fixed); "
-                 "incompressible: the convective flux"),
-      bool_param("coarse_pressure", d.coarse_pressure,
-                 "mass_momentum: the pressure of the coarse density, -c_lat P(rho) I (false: the lattice's P*)"),
-      entry_param("time_integration", "explicit",
-                  "the registered integrator that steps the coarse state (closurelab list integrator), a name or "
-                  "{\"name\": ..., its parameters}; mass_momentum needs one whose stability region holds the imaginary "
-                  "axis (arkode_erk), not explicit; arkode_imex takes the viscous part div T_int implicitly, the rest "
-                  "explicitly")};
-  for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
-  return schema;
-}
-
-MesoSolver2DOptions meso_2d_options_from(const json& s) {
-  MesoSolver2DOptions o;
-  o.kappa = s.at("kappa").get<double>();
-  o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
-  o.divergence_order = s.at("divergence_order").get<int>();
-  if (o.divergence_order != 2 && o.divergence_order != 4)
-    throw ConfigError("/solver/divergence_order", "must be 2 or 4; got " + std::to_string(o.divergence_order));
-  o.equations = parse_name<CoarseEquations>(s.at("equations").get<std::string>(), "/solver/equations");
-  o.transport = s.at("transport").get<bool>();
-  o.coarse_pressure = s.at("coarse_pressure").get<bool>();
-  read_time_loop(s, o);
-  return o;
-}
-
-TensorMesh2D coarse_mesh_2d(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta) {
-  if (scene.has_walls || !scene.box.periodic_x || !scene.box.periodic_y)
-    throw ConfigError("/scene", "the 2D reduced model needs a doubly periodic box without walls; scene '" + scene.name +
-                                    "' is not one");
-  const double target = spacing_over_eta * kernel.eta();
-  check_mesh_2d_memory(std::round(scene.box.lx / target), std::round(scene.box.ly / target), "/solver/spacing_over_eta");
-  const int nx = static_cast<int>(std::lround(scene.box.lx / target));
-  const int ny = static_cast<int>(std::lround(scene.box.ly / target));
-  if (nx < 4 || ny < 4)
-    throw ConfigError("/solver/spacing_over_eta", "fewer than 4 coarse nodes along a side of the box (" +
-                                                      std::to_string(nx) + " x " + std::to_string(ny) + ")");
-  return {UniformMesh1D::cell_centred(0.0, scene.box.lx, nx, true),
-          UniformMesh1D::cell_centred(0.0, scene.box.ly, ny, true)};
-}
-
-TensorMesh2D x_faces_of(const TensorMesh2D& c) {
-  TensorMesh2D f = c;
-  f.x.origin -= 0.5 * c.x.spacing;  // i Δ: the left face of cell i
-  return f;
-}
-
-TensorMesh2D y_faces_of(const TensorMesh2D& c) {
-  TensorMesh2D f = c;
-  f.y.origin -= 0.5 * c.y.spacing;
-  return f;
-}
-
-Eigen::VectorXd face_difference(const TensorMesh2D& cells, const Eigen::VectorXd& on_faces, int axis, int order) {
-  const int nx = cells.nx(), ny = cells.ny();
-  const double h = axis == 0 ? cells.x.spacing : cells.y.spacing;
-  const auto at = [&](int i, int j) {  // periodic
-    return on_faces[cells.index((i % nx + nx) % nx, (j % ny + ny) % ny)];
-  };
-  const int di = axis == 0 ? 1 : 0, dj = axis == 0 ? 0 : 1;
-  Eigen::VectorXd out(cells.size());
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const double inner = at(i + di, j + dj) - at(i, j);  // faces i + 1 and i of cell i
-      out[cells.index(i, j)] =
-          order == 4 ? (27.0 * inner - (at(i + 2 * di, j + 2 * dj) - at(i - di, j - dj))) / (24.0 * h) : inner / h;
-    }
-  return out;
-}
-
-Eigen::VectorXd to_faces(const TensorMesh2D& cells, const Eigen::VectorXd& c, int axis, int order) {
-  const int nx = cells.nx(), ny = cells.ny();
-  const auto at = [&](int i, int j) { return c[cells.index((i % nx + nx) % nx, (j % ny + ny) % ny)]; };
-  const int di = axis == 0 ? 1 : 0, dj = axis == 0 ? 0 : 1;
-  Eigen::VectorXd out(cells.size());
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const double inner = at(i - di, j - dj) + at(i, j);  // the two cells either side of face i
-      out[cells.index(i, j)] =
-          order == 4 ? (9.0 * inner - (at(i - 2 * di, j - 2 * dj) + at(i + di, j + dj))) / 16.0 : 0.5 * inner;
-    }
-  return out;
-}
-
-std::vector<double> divergence_symbol(int n, double h, int order) {
-  if (order == 2) return PeriodicProjection2D::central_symbol(n, h);
-  std::vector<double> s(static_cast<std::size_t>(n));
-  for (int m = 0; m < n; ++m) {
-    const double th = 2.0 * M_PI * m / n;
-    const double interpolation = (9.0 * std::cos(0.5 * th) - std::cos(1.5 * th)) / 8.0;
-    s[m] = interpolation * (27.0 * std::sin(0.5 * th) - std::sin(1.5 * th)) / (12.0 * h);
-  }
-  s[0] = 0.0;
-  if (n % 2 == 0) s[n / 2] = 0.0;  // the interpolation's symbol vanishes there
-  return s;
-}
-
-double lattice_pressure_factor(const Scene& scene) {
-  const SmoothingKernel w = scene.smoothing_kernel();
-  const int reach = static_cast<int>(std::ceil(w.support() / scene.dx)) + 1;
-  double n = 0.0, virial = 0.0;
-  for (int j = -reach; j <= reach; ++j)
-    for (int i = -reach; i <= reach; ++i) {
-      const double x = i * scene.dx, y = j * scene.dx, r = std::hypot(x, y);
-      if (r >= w.support()) continue;
-      n += w.w(r);
-      if (r > 0) virial += w.dw(r) / r * x * x;
-    }
-  return -virial / (scene.dx * scene.dx * n * n);
-}
 
 namespace {
 
@@ -156,10 +32,11 @@ void add_setup(QuadratureCost& total, const QuadratureCost& one) {
 
 void check_meso_solver_2d(const Scene& scene, const AveragingKernel& kernel, const StressQuadrature& quadrature,
                           const MesoSolver2DOptions& o) {
-  const TensorMesh2D coarse = coarse_mesh_2d(scene, kernel, o.spacing_over_eta);
+  const TensorMesh2D coarse = continuum_mesh_for(scene, kernel, o.spacing_over_eta);
+  if (scene.cavity) check_walled_meso_2d(coarse, o);
   try {
-    quadrature.check(scene, x_faces_of(coarse), kXFaceComponents);
-    quadrature.check(scene, y_faces_of(coarse), kYFaceComponents);
+    quadrature.check(scene, scene.cavity ? walled_faces_of(coarse, 0) : x_faces_of(coarse), kXFaceComponents);
+    quadrature.check(scene, scene.cavity ? walled_faces_of(coarse, 1) : y_faces_of(coarse), kYFaceComponents);
   } catch (const ConfigError& e) {
     throw under_quadrature(e);
   }
@@ -176,7 +53,7 @@ void check_meso_run_2d(const Scene& scene, const AveragingKernel& kernel, const 
   if (o.equations == CoarseEquations::mass_momentum && scene.van_der_waals)
     throw ConfigError(path + "/equations", "mass_momentum takes the weakly compressible equation of state; scene '" +
                                                scene.name + "' has the van der Waals one");
-  const TensorMesh2D coarse = coarse_mesh_2d(scene, kernel, o.spacing_over_eta);
+  const TensorMesh2D coarse = continuum_mesh_for(scene, kernel, o.spacing_over_eta);
   const double h = std::min(coarse.x.spacing, coarse.y.spacing);
   check_stepped_run(scene, solver, h, coarse_time_step(o.kappa, scene.rho0, h, scene.max_viscosity(), 0.0), path);
 }
@@ -190,9 +67,15 @@ MesoSolver2D::MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, De
       on_y_faces_(on_y_faces),
       integrator_(integrator),
       opt_(std::move(options)) {
-  coarse_ = coarse_mesh_2d(scene, kernel, opt_.spacing_over_eta);
-  fine_ = TensorMesh2D{UniformMesh1D::cell_centred(0.0, scene.box.lx, scene.nx, true),
-                       UniformMesh1D::cell_centred(0.0, scene.box.ly, scene.ny, true)};
+  coarse_ = continuum_mesh_for(scene, kernel, opt_.spacing_over_eta);
+  if (scene.cavity) {
+    check_walled_meso_2d(coarse_, opt_);
+    walls_ = std::make_shared<WalledBox2D>(scene, kernel, coarse_, opt_.divergence_order);
+    fine_ = walls_->averaging.fluid_lattice;
+  } else {
+    fine_ = TensorMesh2D{UniformMesh1D::cell_centred(0.0, scene.box.lx, scene.nx, true),
+                         UniformMesh1D::cell_centred(0.0, scene.box.ly, scene.ny, true)};
+  }
   solution_ = opt_.discretization == Discretization::coarse_coarse ? coarse_ : fine_;
   op_ = make_averaging_operator_2d(kernel, coarse_, fine_, opt_.discretization);
   try {
@@ -201,8 +84,8 @@ MesoSolver2D::MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, De
     throw ConfigError("/closure/deconvolver" + e.path(), e.message());
   }
   try {
-    on_x_faces_.setup(scene, kernel, x_faces_of(coarse_), kXFaceComponents);
-    on_y_faces_.setup(scene, kernel, y_faces_of(coarse_), kYFaceComponents);
+    on_x_faces_.setup(scene, kernel, walls_ ? walled_faces_of(coarse_, 0) : x_faces_of(coarse_), kXFaceComponents);
+    on_y_faces_.setup(scene, kernel, walls_ ? walled_faces_of(coarse_, 1) : y_faces_of(coarse_), kYFaceComponents);
   } catch (const ConfigError& e) {
     throw under_quadrature(e);
   }
@@ -212,7 +95,7 @@ MesoSolver2D::MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, De
   // velocity average (2.9) of particles that carry F(q) as their velocity.
   averaged_body_force(scene, kernel, coarse_, fx_, fy_, &rho_bar_);
   lattice_pressure_factor_ = lattice_pressure_factor(scene);
-  if (opt_.equations == CoarseEquations::incompressible)
+  if (opt_.equations == CoarseEquations::incompressible && !walls_)
     projection_ = std::make_unique<PeriodicProjection2D>(divergence_symbol(coarse_.nx(), coarse_.x.spacing, opt_.divergence_order),
                                                          divergence_symbol(coarse_.ny(), coarse_.y.spacing, opt_.divergence_order));
   particle_mass_ = scene.particle_mass();
@@ -224,11 +107,12 @@ void MesoSolver2D::set_velocity(const Eigen::VectorXd& vx, const Eigen::VectorXd
   vx_ = vx;
   vy_ = vy;
   if (projection_) projection_->project(vx_, vy_);
+  if (walls_) walls_->projection.project(vx_, vy_);
 }
 
-bool MesoSolver2D::deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std::string& issue) {
+bool MesoSolver2D::deconvolve(const Eigen::VectorXd& v, int component, Eigen::VectorXd& x, std::string& issue) {
   const auto t0 = std::chrono::steady_clock::now();
-  Eigen::VectorXd b = v;
+  Eigen::VectorXd b = walls_ ? walls_->averaging.fluid_data(v, component) : v;
   if (opt_.discretization == Discretization::fine_fine) {  // the coarse data interpolated onto the lattice
     std::vector<Vec2> pts(static_cast<std::size_t>(fine_.size()));
     for (int n = 0; n < fine_.size(); ++n) pts[static_cast<std::size_t>(n)] = fine_.node(n);
@@ -248,18 +132,14 @@ bool MesoSolver2D::deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std:
 }
 
 bool MesoSolver2D::face_stress(bool closure, bool stress, FaceStress& s, std::string& issue) {
-  if ((closure || stress) && (!deconvolve(vx_, s.rx, issue) || !deconvolve(vy_, s.ry, issue))) return false;
-  if (!stress) {
-    s.txx = s.tyx = s.txy = s.tyy = Eigen::VectorXd::Zero(coarse_.size());
+  if ((closure || stress) && (!deconvolve(vx_, 0, s.rx, issue) || !deconvolve(vy_, 1, s.ry, issue))) return false;
+  if (!stress) {  // zero on each face mesh (a walled box has one face more than cells along each axis)
+    const Eigen::Index n = coarse_.size();
+    s.txx = s.tyx = Eigen::VectorXd::Zero(walls_ ? n + coarse_.ny() : n);
+    s.txy = s.tyy = Eigen::VectorXd::Zero(walls_ ? n + coarse_.nx() : n);
     return true;
   }
-  const Reconstruction recon_x(solution_, 2, s.rx), recon_y(solution_, 2, s.ry);
-  const VelocitySampler sampler = [&](const std::vector<Vec2>& points) {
-    Eigen::Matrix2Xd out(2, static_cast<Eigen::Index>(points.size()));
-    out.row(0) = recon_x.sample(points).transpose();
-    out.row(1) = recon_y.sample(points).transpose();
-    return out;
-  };
+  const VelocitySampler sampler = closure_sampler(s.rx, s.ry);
   const auto t1 = std::chrono::steady_clock::now();
   QuadratureResult on_x = on_x_faces_.evaluate(sampler);
   QuadratureResult on_y = on_y_faces_.evaluate(sampler);
@@ -278,6 +158,17 @@ bool MesoSolver2D::face_stress(bool closure, bool stress, FaceStress& s, std::st
   return true;
 }
 
+VelocitySampler MesoSolver2D::closure_sampler(const Eigen::VectorXd& rx, const Eigen::VectorXd& ry) const {
+  const auto recon_x = std::make_shared<Reconstruction>(solution_, 2, rx);
+  const auto recon_y = std::make_shared<Reconstruction>(solution_, 2, ry);
+  return [recon_x, recon_y](const std::vector<Vec2>& points) {
+    Eigen::Matrix2Xd out(2, static_cast<Eigen::Index>(points.size()));
+    out.row(0) = recon_x->sample(points).transpose();
+    out.row(1) = recon_y->sample(points).transpose();
+    return out;
+  };
+}
+
 bool MesoSolver2D::rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue) {
   return momentum_rate(RatePart::all, ax, ay, issue);
 }
@@ -290,9 +181,8 @@ bool MesoSolver2D::momentum_rate(RatePart part, Eigen::VectorXd& ax, Eigen::Vect
   }
   FaceStress t;
   if (!face_stress(true, true, t, issue)) return false;
-  const int o = opt_.divergence_order;
-  const Eigen::VectorXd div_x = face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o);
-  const Eigen::VectorXd div_y = face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o);
+  const Eigen::VectorXd div_x = face_diff(t.txx, 0) + face_diff(t.txy, 1);
+  const Eigen::VectorXd div_y = face_diff(t.tyx, 0) + face_diff(t.tyy, 1);
   ax = div_x.cwiseQuotient(rho_bar_);
   ay = div_y.cwiseQuotient(rho_bar_);
   if (part == RatePart::all) {
@@ -328,15 +218,22 @@ bool MesoSolver2D::incompressible_rate(RatePart part, Eigen::VectorXd& ax, Eigen
   const bool explicit_terms = part != RatePart::stiff, convective = opt_.transport && explicit_terms;
   FaceStress t;
   if (!face_stress(convective, stress, t, issue)) return false;
-  const int o = opt_.divergence_order;
-  if (convective) subtract_convective_flux(t);
-  ax = (face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o)).cwiseQuotient(rho_bar_);
-  ay = (face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o)).cwiseQuotient(rho_bar_);
+  Eigen::VectorXd cx = Eigen::VectorXd::Zero(vx_.size()), cy = cx;  // the walls' constraint forces
+  if (walls_) {
+    if (!add_wall_terms(convective, stress, t, cx, cy, issue)) return false;
+  } else if (convective) {
+    subtract_convective_flux(t);
+  }
+  ax = (face_diff(t.txx, 0) + face_diff(t.txy, 1) + cx).cwiseQuotient(rho_bar_);
+  ay = (face_diff(t.tyx, 0) + face_diff(t.tyy, 1) + cy).cwiseQuotient(rho_bar_);
   if (explicit_terms) {
     ax += fx_;
     ay += fy_;
   }
-  projection_->project(ax, ay);
+  if (walls_)
+    walls_->projection.project(ax, ay);
+  else
+    projection_->project(ax, ay);
   return true;
 }
 
@@ -359,7 +256,7 @@ bool MesoSolver2D::conservative_rate(RatePart part, const Eigen::VectorXd& u, Ei
   Eigen::VectorXd drho = Eigen::VectorXd::Zero(n);
   if (transport) {
     subtract_convective_flux(t);
-    drho = -(face_difference(coarse_, faces(mx, 0), 0, o) + face_difference(coarse_, faces(my, 1), 1, o));
+    drho = -(face_diff(faces(mx, 0), 0) + face_diff(faces(my, 1), 1));
   }
   if (opt_.coarse_pressure && explicit_terms) {
     Eigen::VectorXd p(n);
@@ -369,8 +266,8 @@ bool MesoSolver2D::conservative_rate(RatePart part, const Eigen::VectorXd& u, Ei
     t.tyy += faces(p, 1);
   }
   dudt.resize(3 * n);
-  dudt.segment(0, n) = face_difference(coarse_, t.txx, 0, o) + face_difference(coarse_, t.txy, 1, o);
-  dudt.segment(n, n) = face_difference(coarse_, t.tyx, 0, o) + face_difference(coarse_, t.tyy, 1, o);
+  dudt.segment(0, n) = face_diff(t.txx, 0) + face_diff(t.txy, 1);
+  dudt.segment(n, n) = face_diff(t.tyx, 0) + face_diff(t.tyy, 1);
   if (explicit_terms) {
     dudt.segment(0, n) += rho_bar_.cwiseProduct(fx_);
     dudt.segment(n, n) += rho_bar_.cwiseProduct(fy_);

@@ -1,6 +1,7 @@
 #pragma once
 // The reduced model in two dimensions (beyond the paper): the averaged balance (2.11) in both components on a
-// doubly periodic coarse mesh, for scenes without walls whose flow depends on x and y (the cellular flow):
+// doubly periodic coarse mesh, for scenes without walls whose flow depends on x and y (the cellular flow), or in the
+// walled cavity (below):
 //   ρ̄ ∂_t v̄_a = ∂_x T_ax + ∂_y T_ay + ρ̄ F̄_a,   a = x, y,   T_ab = Σ f_a d_b (2.13).
 // Each step closes the stress as the 1D model does: deconvolve both components of v̄ with the Kronecker operator
 // A_y ⊗ A_x at the named discretization (§4.2; any registered Deconvolver, bound once, two solves per step) →
@@ -38,12 +39,19 @@
 //                  model's own divergence (face interpolation then face difference, of divergence_order), so the
 //                  discrete divergence of v̄ stays where set_velocity put it (projected there). No sound speed in
 //                  the time step: (5.21)–(5.22) with the largest speed.
+// In a walled rectangle (the lid-driven cavity; core/reduced/walled_box_2d.hpp), incompressible and coarse–fine only:
+// the nodes are cell-centred over the fluid's square, the faces n + 1 per row with the outermost on the walls; the
+// closure solves for the fluid particles' velocities on their lattice with the walls' known velocities as data; the
+// rate is div(T_int − Q) + F_c, T_int from the quadrature on the faces (its fluid–wall bonds included), Q the fluid's
+// own convective flux on the faces, F_c the walls' constraint forces (the fluid's averaged balance closes exactly:
+// tests/numerical/test_meso_solver_2d_walls.cpp), projected for no flow through the walls.
 // Integrators (solver.time_integration, core/reduced/integrator.hpp): each set offers its rate whole and split for an
 // IMEX integrator (arkode_imex): the viscous part div T_int implicit, the rest (convective flux, coarse pressure, mass
 // flux, body force) explicit; under incompressible each part projected. The step is (5.21)–(5.22) whichever runs.
 #include <Eigen/Core>
 #include <array>
 #include <functional>
+#include <memory>
 #include <string_view>
 #include <utility>
 
@@ -59,6 +67,8 @@
 #include "core/sph/scene.hpp"
 
 namespace closurelab {
+
+struct WalledBox2D;  // core/reduced/walled_box_2d.hpp
 
 // solver.equations (above).
 enum class CoarseEquations { momentum, mass_momentum, incompressible };
@@ -129,6 +139,10 @@ Eigen::VectorXd face_difference(const TensorMesh2D& cells, const Eigen::VectorXd
 // The structural checks before any work (mesh, each quadrature's fit on its face mesh), for validating a spec.
 void check_meso_solver_2d(const Scene& scene, const AveragingKernel& kernel, const StressQuadrature& quadrature,
                           const MesoSolver2DOptions& options);
+// A walled rectangle (the lid-driven cavity) takes the incompressible equations, the coarse–fine closure and the
+// dense projection's mesh size: ConfigError at /solver/equations, /closure/discretization or
+// /solver/spacing_over_eta.
+void check_walled_meso_2d(const TensorMesh2D& coarse, const MesoSolver2DOptions& options);
 // check_stepped_run (core/sph/sph_run.hpp) at the coarse mesh's smaller spacing Δ, every step at most
 // kappa·rho Δ²/mu_max: ConfigError at `path`/target_time or `path`/steady_window.
 void check_meso_run_2d(const Scene& scene, const AveragingKernel& kernel, const json& resolved_solver,
@@ -160,7 +174,11 @@ class MesoSolver2D {
   const Eigen::VectorXd& averaged_force_y() const { return fy_; }
 
  private:
-  bool deconvolve(const Eigen::VectorXd& v, Eigen::VectorXd& x, std::string& issue);
+  // The closure's velocities on the solution grid from v̄'s `component` (0: x, 1: y); in a walled box the data are
+  // the fluid's part of the average (walled_box_2d.hpp).
+  bool deconvolve(const Eigen::VectorXd& v, int component, Eigen::VectorXd& x, std::string& issue);
+  // ∂ along `axis` at the centres of a field on that axis's faces (periodic or walled).
+  Eigen::VectorXd face_diff(const Eigen::VectorXd& on_faces, int axis) const;
   // The terms a rate evaluation includes: all of them (`at`), or for an IMEX integrator (CoarseRate::stiff and
   // nonstiff) the viscous part div T_int (implicit) apart from the rest (convective flux, coarse pressure, mass
   // flux, body force; explicit). Under incompressible each part is projected.
@@ -171,10 +189,16 @@ class MesoSolver2D {
     Eigen::VectorXd rx, ry, txx, tyx, txy, tyy;
   };
   bool face_stress(bool closure, bool stress, FaceStress& s, std::string& issue);
+  // The closure's velocities on the solution grid, sampled anywhere (bilinear between its nodes).
+  VelocitySampler closure_sampler(const Eigen::VectorXd& rx, const Eigen::VectorXd& ry) const;
   // The convective flux Φ at the centres (xx, xy, yy) from the closure's velocities in `t` and the current v̄, ρ̄;
   // and `t` less Φ interpolated to its faces.
   std::array<Eigen::VectorXd, 3> convective_flux(const FaceStress& t) const;
   void subtract_convective_flux(FaceStress& t) const;
+  // Walled box, incompressible: the rate's terms the walls add (walled_box_2d.hpp), into the face stress `t`
+  // (less the fluid's convective flux, when `convective`) and the nodes' forces (plus F_c, when `stress`).
+  bool add_wall_terms(bool convective, bool stress, FaceStress& t, Eigen::VectorXd& ax, Eigen::VectorXd& ay,
+                      std::string& issue);
   // The rate of v̄ under momentum (the public rate() is its `all`) and under incompressible.
   bool momentum_rate(RatePart part, Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue);
   bool incompressible_rate(RatePart part, Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue);
@@ -191,6 +215,7 @@ class MesoSolver2D {
   Eigen::VectorXd vx_, vy_, rho_bar_, fx_, fy_;
   double lattice_pressure_factor_ = 1.0, particle_mass_ = 1.0;
   std::unique_ptr<PeriodicProjection2D> projection_;  // incompressible only
+  std::shared_ptr<WalledBox2D> walls_;                // the cavity's walls; null: a doubly periodic box
   long matvecs_ = 0;
   double deconv_seconds_ = 0.0, quad_seconds_ = 0.0;
   QuadratureCost quad_cost_;  // both quadratures' setup and calls

@@ -1,6 +1,8 @@
 // Experiment kind "reduced_model_2d": the two-dimensional reduced model (core/reduced/meso_solver_2d.hpp) on a
 // cellular scene, against the exact velocity A(t) · mode, its Gaussian average and the averaged direct SPH of
-// the same box, with the closure's Landweber prediction, the transient, and the cost and speed-up.
+// the same box, with the closure's Landweber prediction, the transient, and the cost and speed-up; or in the
+// lid-driven cavity (no exact field) against the averaged direct SPH alone, over all nodes and the interior ones
+// (≥ 3η' from the walls), at the final and the saved times.
 #include "experiments/kinds/reduced_model_2d.hpp"
 
 #include <chrono>
@@ -12,7 +14,9 @@
 #include "core/base/metrics.hpp"
 #include "core/reduced/implicit_closure.hpp"
 #include "core/reduced/meso_solver_2d.hpp"
+#include "core/continuum/continuum_navier_stokes_2d.hpp"
 #include "core/scenes/analytic.hpp"
+#include "experiments/kinds/coarse_continuum_scoring.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/reduced_sections.hpp"
 #include "experiments/runner/cell_config.hpp"
@@ -23,9 +27,7 @@ namespace closurelab {
 namespace {
 
 // A vector field at the nodes of a mesh, flat j * nx + i.
-struct Field {
-  Eigen::VectorXd x, y;
-};
+using Field = NodeVelocity;
 
 Field mode_field(const TensorMesh2D& mesh, const Scene::CellularMode& mode, double amplitude) {
   Field f{Eigen::VectorXd(mesh.size()), Eigen::VectorXd(mesh.size())};
@@ -46,14 +48,35 @@ double fitted_amplitude(const Field& f, const Field& unit) {
   return (f.x.dot(unit.x) + f.y.dot(unit.y)) / (unit.x.squaredNorm() + unit.y.squaredNorm());
 }
 
-// Every node is reported and every node is fluid (no solids): "all_nodes" and "fluid_nodes" are the same set,
-// both named as in reduced_model so that one reader serves both.
-json norms(const Field& u, const Field& ref, double scale) {
-  const json n = vector_error_norms(u.x, u.y, ref.x, ref.y, scale).to_json();
-  return {{"all_nodes", n}, {"fluid_nodes", n}, {"peak_relative_difference", peak_relative_difference(speed(u), speed(ref))}};
-}
-
 json field_json(const Field& f) { return {{"vx", f.x}, {"vy", f.y}}; }
+
+// A cellular scene's scores at the final time: the exact field and its average (each mode times the kernel's symbol
+// at (k, k) / 2π), and the amplitude on the mode against the exact one with the Landweber prediction
+// e / (1 − (1 − e)^{n+1}), e the kernel's symbol (continuum) and e_h the eigenvalue of the discrete operator at the mode.
+void cellular_scores(const Scene& scene, const AveragingKernel& kernel, const json& cfg, const TensorMesh2D& mesh,
+                     const MesoResult2D& reduced, std::optional<double> landweber_e_h, json& errors, json& fields) {
+  const Scene::CellularMode& mode = *scene.cellular_mode;
+  const double k = mode.wavenumber, scale = scene.analytic_peak;
+  const Field unit = mode_field(mesh, mode, 1.0), reduced_field{reduced.vx, reduced.vy};
+  const double e = kernel.symbol(Vec2(k, k) / (2.0 * M_PI));
+  const Field exact = mode_field(mesh, mode, mode.amplitude(reduced.time)),
+              averaged = mode_field(mesh, mode, e * mode.amplitude(reduced.time));
+  errors["vs_analytic"] = norms(reduced_field, exact, scale);
+  errors["vs_averaged_analytic"] = norms(reduced_field, averaged, scale);
+  json amplitude = {{"ratio", fitted_amplitude(reduced_field, unit) / mode.amplitude(reduced.time)}, {"e", e}};
+  const json& d = cfg.at("closure").at("deconvolver");
+  if (d.at("name") == "landweber" && d.at("rule") == "fixed") {
+    const int order = d.at("order").get<int>();
+    amplitude["landweber_prediction"] = e / (1 - std::pow(1 - e, order + 1));
+    if (landweber_e_h) {
+      const double eh = *landweber_e_h;
+      amplitude["e_h"] = eh;
+      amplitude["landweber_prediction_discrete"] = eh / (1 - std::pow(1 - eh, order + 1));
+    }
+  }
+  errors["amplitude"] = amplitude;
+  fields["averaged_analytic"] = field_json(averaged);
+}
 
 class ReducedModel2D : public ExperimentKind {
  public:
@@ -61,11 +84,12 @@ class ReducedModel2D : public ExperimentKind {
   std::string description() const override {
     return "two-dimensional coarse solver (both velocity components, staggered stress divergence) with a "
            "deconvolution closure and a stress quadrature on a cellular scene, vs the exact field, its average "
-           "and the averaged direct SPH, with cost and speed-up";
+           "and the averaged direct SPH, or in the lid-driven cavity (incompressible, coarse_fine) vs the averaged "
+           "direct SPH over all and interior nodes, with cost and speed-up";
   }
 
   std::vector<KindSection> sections() const override {
-    return {{"scene", "the scene (required; one with a cellular mode)", "scene", {}},
+    return {{"scene", "the scene (required; one with a cellular mode, or the lid-driven cavity)", "scene", {}},
             {"kernel", "the averaging kernel; its eta must equal the scene's", "kernel", {}},
             {"closure", "the deconvolution closure (both components, Kronecker operator)", "", closure_schema()},
             {"quadrature", "the stress quadrature (default exact), one instance per face mesh", "quadrature", {}},
@@ -80,9 +104,10 @@ class ReducedModel2D : public ExperimentKind {
     check_keys(cell, path, {"scene", "kernel", "closure", "quadrature", "solver", "reference", "transient", "timing"});
     json out;
     auto scene = build_scene(cell, path, reg, &out["scene"]);
-    if (!scene->cellular_mode)
-      throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no cellular mode (the 2D model's exact "
-                                                                    "solution); use the cellular or the taylor-green scene");
+    if (!scene->cellular_mode && !scene->cavity)
+      throw ConfigError(path + "/scene", "scene '" + scene->name + "' has neither a cellular mode (the 2D model's exact "
+                                                                    "solution) nor the cavity's walls; use the cellular, "
+                                                                    "the taylor-green or the lid-driven-cavity scene");
     auto kernel = build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
     out["closure"] = resolve_section(cell, "closure", closure_schema(), path);
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
@@ -119,9 +144,11 @@ class ReducedModel2D : public ExperimentKind {
       throw ConfigError(path + e.path(), e.message());
     }
     {  // the operator's shape (make_averaging_operator_2d): the coarse mesh's data, the coarse or lattice unknowns
-      const TensorMesh2D coarse = coarse_mesh_2d(*scene, *kernel, options(out).spacing_over_eta);
+      const TensorMesh2D coarse = continuum_mesh_for(*scene, *kernel, options(out).spacing_over_eta);
       const Discretization disc = options(out).discretization;
-      const long lattice = static_cast<long>(scene->nx) * scene->ny, data = coarse.nx() * static_cast<long>(coarse.ny());
+      const long side = scene->cavity ? std::lround(scene->cavity->side / scene->dx) : 0;  // the fluid's lattice
+      const long lattice = scene->cavity ? side * side : static_cast<long>(scene->nx) * scene->ny,
+                 data = coarse.nx() * static_cast<long>(coarse.ny());
       check_operator_shape(out["closure"], disc == Discretization::fine_fine ? lattice : data,
                            disc == Discretization::coarse_coarse ? data : lattice, path);
     }
@@ -145,8 +172,7 @@ class ReducedModel2D : public ExperimentKind {
   json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
     const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
     const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
-    const Scene::CellularMode& mode = scene->cellular_mode.value();
-    const double k = mode.wavenumber, scale = scene->analytic_peak, tau = scene->time_scale();
+    const double scale = scene->analytic_peak, tau = scene->time_scale();
     MesoSolver2DOptions opt = options(cfg);
     opt.progress = progress;
     opt.snapshot_times = transient_times(cfg.at("transient"), *scene);
@@ -185,8 +211,8 @@ class ReducedModel2D : public ExperimentKind {
           if (run_count++ > 0)
             repeats_identical = repeats_identical && r.vx == reduced.vx && r.vy == reduced.vy && r.steps == reduced.steps;
           else {
-            if (opt.discretization == Discretization::coarse_coarse) {
-              const Eigen::VectorXd m = mode_field(solver.coarse_mesh(), mode, 1.0).x;
+            if (opt.discretization == Discretization::coarse_coarse && scene->cellular_mode) {
+              const Eigen::VectorXd m = mode_field(solver.coarse_mesh(), *scene->cellular_mode, 1.0).x;
               landweber_e_h = m.dot(solver.forward_operator().apply(m)) / m.squaredNorm();
             }
           }
@@ -196,31 +222,12 @@ class ReducedModel2D : public ExperimentKind {
         },
         timing_policy_from(cfg.at("timing")));
     const TensorMesh2D& mesh = reduced.mesh;
+    const Field reduced_field{reduced.vx, reduced.vy};
+    json errors = json::object(), fields = {{"x", mesh.x.nodes()}, {"y", mesh.y.nodes()}, {"reduced", field_json(reduced_field)}};
+    if (scene->cellular_mode) cellular_scores(*scene, *kernel, cfg, mesh, reduced, landweber_e_h, errors, fields);
+    // The cavity's nodes ≥ 3η' from the walls (none elsewhere: every node is then reported once, as all_nodes).
+    const std::vector<int> interior = interior_nodes(*scene, mesh);
 
-    // The exact field and its average (each mode times the kernel's symbol at (k, k) / 2π) at the final time.
-    const Field unit = mode_field(mesh, mode, 1.0), reduced_field{reduced.vx, reduced.vy};
-    const double e = kernel->symbol(Vec2(k, k) / (2.0 * M_PI));
-    const Field exact = mode_field(mesh, mode, mode.amplitude(reduced.time)),
-                averaged = mode_field(mesh, mode, e * mode.amplitude(reduced.time));
-    json errors = {{"vs_analytic", norms(reduced_field, exact, scale)},
-                   {"vs_averaged_analytic", norms(reduced_field, averaged, scale)}};
-    // The amplitude on the mode against the exact one, and the Landweber prediction e / (1 − (1 − e)^{n+1}) with
-    // e the kernel's symbol (continuum) and e_h the eigenvalue of the discrete operator at the mode.
-    json amplitude = {{"ratio", fitted_amplitude(reduced_field, unit) / mode.amplitude(reduced.time)}, {"e", e}};
-    const json& d = cfg.at("closure").at("deconvolver");
-    if (d.at("name") == "landweber" && d.at("rule") == "fixed") {
-      const int order = d.at("order").get<int>();
-      amplitude["landweber_prediction"] = e / (1 - std::pow(1 - e, order + 1));
-      if (landweber_e_h) {
-        const double eh = *landweber_e_h;
-        amplitude["e_h"] = eh;
-        amplitude["landweber_prediction_discrete"] = eh / (1 - std::pow(1 - eh, order + 1));
-      }
-    }
-    errors["amplitude"] = amplitude;
-
-    json fields = {{"x", mesh.x.nodes()}, {"y", mesh.y.nodes()}, {"reduced", field_json(reduced_field)},
-                   {"averaged_analytic", field_json(averaged)}};
     const long evaluations = reduced.quadrature_cost.evaluations;
     json cost = {{"steps", reduced.steps},
                  {"dt", reduced.dt},
@@ -244,29 +251,34 @@ class ReducedModel2D : public ExperimentKind {
       };
       const Field direct_field = average_of(direct->particles);
       const double direct_time = direct->record.at("time").get<double>();
-      errors["vs_averaged_direct_sph"] = norms(reduced_field, direct_field, scale);
+      errors["vs_averaged_direct_sph"] = norms(reduced_field, direct_field, scale, interior);
+      // A cellular scene's mode at unit amplitude and the averaged exact field at time t (the kernel's symbol e).
+      const Scene::CellularMode* mode = scene->cellular_mode ? &*scene->cellular_mode : nullptr;
+      const double e = mode ? kernel->symbol(Vec2(mode->wavenumber, mode->wavenumber) / (2.0 * M_PI)) : 0.0;
+      const auto averaged_exact = [&](double t) { return mode_field(mesh, *mode, e * mode->amplitude(t)); };
       // The reference's own error: the averaged direct SPH against the averaged exact field at its final time.
-      errors["direct_sph_vs_averaged_analytic"] =
-          norms(direct_field, mode_field(mesh, mode, e * mode.amplitude(direct_time)), scale);
+      if (mode) errors["direct_sph_vs_averaged_analytic"] = norms(direct_field, averaged_exact(direct_time), scale);
       fields["direct_average"] = field_json(direct_field);
       direct->record_into(row);
       json transient = json::array();
       for (std::size_t s = 0; s < opt.snapshot_times.size(); ++s) {
         const double t = opt.snapshot_times[s];
         json snap = {{"t_over_tau", t / tau}, {"time", t}};
-        const Field avg_exact = mode_field(mesh, mode, e * mode.amplitude(t));
         if (s < reduced_snapshots.size() && s < direct->snapshots.size()) {
           const Field& r = reduced_snapshots[s].second;
           const Field dsnap = average_of(direct->snapshots[s].particles);
-          snap["reduced_vs_averaged_direct_sph"] = norms(r, dsnap, scale);
+          snap["reduced_vs_averaged_direct_sph"] = norms(r, dsnap, scale, interior);
           // The same against the averaged direct field's own peak at this time (a decaying flow's errors relative
           // to what is left of it, not to the initial peak `scale`).
-          snap["reduced_vs_averaged_direct_sph_at_its_peak"] = norms(r, dsnap, speed(dsnap).maxCoeff());
-          snap["reduced_vs_averaged_analytic"] = norms(r, avg_exact, scale);
-          snap["direct_sph_vs_averaged_analytic"] = norms(dsnap, avg_exact, scale);
-          snap["amplitude"] = {{"reduced", fitted_amplitude(r, unit)},
-                               {"direct_sph_average", fitted_amplitude(dsnap, unit)},
-                               {"averaged_analytic", e * mode.amplitude(t)}};
+          snap["reduced_vs_averaged_direct_sph_at_its_peak"] = norms(r, dsnap, speed(dsnap).maxCoeff(), interior);
+          if (mode) {
+            const Field avg_exact = averaged_exact(t), unit = mode_field(mesh, *mode, 1.0);
+            snap["reduced_vs_averaged_analytic"] = norms(r, avg_exact, scale);
+            snap["direct_sph_vs_averaged_analytic"] = norms(dsnap, avg_exact, scale);
+            snap["amplitude"] = {{"reduced", fitted_amplitude(r, unit)},
+                                 {"direct_sph_average", fitted_amplitude(dsnap, unit)},
+                                 {"averaged_analytic", e * mode->amplitude(t)}};
+          }
         } else {
           snap["status"] = "not reached (a run ended before this time)";
         }

@@ -107,7 +107,6 @@ void MesoSolver2D::set_velocity(const Eigen::VectorXd& vx, const Eigen::VectorXd
   vx_ = vx;
   vy_ = vy;
   if (projection_) projection_->project(vx_, vy_);
-  if (walls_) walls_->projection.project(vx_, vy_);
 }
 
 bool MesoSolver2D::deconvolve(const Eigen::VectorXd& v, int component, Eigen::VectorXd& x, std::string& issue) {

@@ -106,7 +106,7 @@ struct MesoSolver2DOptions : TimeLoopOptions {
 };
 
 struct MesoResult2D : ClosureRunResult {
-  TensorMesh2D mesh;        // the coarse nodes
+  TensorMesh2D mesh;       // the coarse nodes
   Eigen::VectorXd vx, vy;  // v̄ there (flat j * nx + i)
 };
 
@@ -159,8 +159,10 @@ class MesoSolver2D {
   MesoResult2D run();
   bool step(double dt, std::string& issue);  // false on a numerical issue (message in `issue`)
   double time_step() const;
-  // Sets v̄ (e.g. the average of an initial velocity; under incompressible, its projection); sizes must match the
-  // coarse mesh.
+  // Sets v̄ (e.g. the average of an initial velocity; under incompressible, its projection on a doubly periodic box);
+  // sizes must match the coarse mesh. A walled box takes it as given: the average of the initial particles, whose
+  // walls' part (the lid's, near its corners) has a normal component on the wall faces; the rates are projected, so
+  // the discrete divergence keeps its initial value.
   void set_velocity(const Eigen::VectorXd& vx, const Eigen::VectorXd& vy);
   // ∂_t v̄ at the current v̄ (both components), for diagnostics and tests.
   bool rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, std::string& issue);
@@ -169,7 +171,7 @@ class MesoSolver2D {
   const ForwardOperator& forward_operator() const { return op_; }
   const Eigen::VectorXd& vx() const { return vx_; }
   const Eigen::VectorXd& vy() const { return vy_; }
-  const Eigen::VectorXd& density() const { return rho_bar_; }  // ρ̄ (fixed under `momentum`)
+  const Eigen::VectorXd& density() const { return rho_bar_; }      // ρ̄ (fixed under `momentum`)
   const Eigen::VectorXd& averaged_force_x() const { return fx_; }  // F̄ = (2.14) / (2.8) at the nodes
   const Eigen::VectorXd& averaged_force_y() const { return fy_; }
 

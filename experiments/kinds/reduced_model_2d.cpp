@@ -201,7 +201,8 @@ class ReducedModel2D : public ExperimentKind {
           };
           const auto t_setup = std::chrono::steady_clock::now();
           MesoSolver2D solver(*scene, *kernel, *deconv, *on_x_faces, *on_y_faces, *integrator, o);
-          if (scene->initial_velocity) {  // the average (2.9) of the lattice's initial velocities
+          // The average (2.9) of the lattice's initial velocities, the walls' particles at theirs (the cavity's lid).
+          if (scene->initial_velocity || scene->cavity) {
             const MesoFields f =
                 average_particles(scene->make_particles(), scene->box, *kernel, solver.coarse_mesh(), AveragingRequest{});
             solver.set_velocity(f.vx, f.vy);

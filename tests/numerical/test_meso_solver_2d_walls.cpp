@@ -6,7 +6,8 @@
 //     walls their prescribed velocity) turned into fluid data equals the Kronecker operator on the fluid lattice;
 //   - the walls' constraint forces close the fluid's averaged balance: Σ_fluid ψ F_f = div T_int + F_c at every node,
 //     div T_int by central differences of the exact quadrature (2.13) at shifted nodes;
-//   - the model in the cavity, started at rest: the lid drags the top row along +x, the field stays divergence-free.
+//   - the model in the cavity, started at rest (the lid's share of the average in place): the lid drags the top row
+//     along +x, the discrete divergence keeps its initial value.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -175,7 +176,7 @@ TEST(ReducedModel2DWalls, ConstraintForcesCloseTheFluidsAveragedBalance) {
   EXPECT_GT((div_x - lhs_x).cwiseAbs().maxCoeff(), 0.1 * scale);
 }
 
-TEST(ReducedModel2DWalls, TheLidDragsTheTopRowAndTheFieldStaysDivergenceFree) {
+TEST(ReducedModel2DWalls, TheLidDragsTheTopRowAndTheDivergenceKeepsItsInitialValue) {
   const Cavity c = make_cavity();
   const Registry& reg = builtin_registry();
   MesoSolver2DOptions o;
@@ -186,14 +187,22 @@ TEST(ReducedModel2DWalls, TheLidDragsTheTopRowAndTheFieldStaysDivergenceFree) {
   auto qy = reg.quadratures.create(json{{"name", "exact"}}, "/quadrature");
   auto integrator = reg.integrators.create(json{{"name", "explicit"}}, "/integrator");
   MesoSolver2D solver(*c.scene, *c.kernel, *deconv, *qx, *qy, *integrator, o);
+  const TensorMesh2D& m = solver.coarse_mesh();
+  // At rest: the average of the particles, the lid's included (not zero next to the lid).
+  const MesoFields rest = average_particles(c.scene->make_particles(), c.scene->box, *c.kernel, m, AveragingRequest{});
+  solver.set_velocity(rest.vx, rest.vy);
+  const int top = m.index(m.nx() / 2, m.ny() - 1), bottom = m.index(m.nx() / 2, 0);
+  const double lid_share = rest.vx[top];
+  EXPECT_GT(lid_share, 0.05);
+  const WalledProjection2D p(m, o.divergence_order);
+  const Eigen::VectorXd d0 = p.divergence(rest.vx, rest.vy);
+  EXPECT_GT(d0.cwiseAbs().maxCoeff(), 1e-3);  // the lid's share crosses the side walls' faces near its corners
   std::string issue;
   for (int s = 0; s < 20; ++s) ASSERT_TRUE(solver.step(solver.time_step(), issue)) << issue;
-  const TensorMesh2D& m = solver.coarse_mesh();
-  const int top = m.index(m.nx() / 2, m.ny() - 1), bottom = m.index(m.nx() / 2, 0);
-  EXPECT_GT(solver.vx()[top], 0.05);
-  EXPECT_LT(std::abs(solver.vx()[bottom]), 0.5 * solver.vx()[top]);
-  const WalledProjection2D p(m, o.divergence_order);
-  EXPECT_LT(p.divergence(solver.vx(), solver.vy()).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_GT(solver.vx()[top], lid_share + 0.05);  // the lid drags the fluid under it
+  EXPECT_LT(std::abs(solver.vx()[bottom]), 0.5 * (solver.vx()[top] - lid_share));
+  // The rates are projected: the discrete divergence keeps its initial value.
+  EXPECT_LT((p.divergence(solver.vx(), solver.vy()) - d0).cwiseAbs().maxCoeff(), 1e-9);
   // Refused: a walled box under another discretization or other equations.
   o.discretization = Discretization::coarse_coarse;
   EXPECT_THROW(MesoSolver2D(*c.scene, *c.kernel, *deconv, *qx, *qy, *integrator, o), ConfigError);

@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Summary of a reduced_model_2d table (the two-dimensional reduced model on a cellular mode: the cellular flow or the
-Taylor-Green vortex).
+Taylor-Green vortex; or in the lid-driven cavity, which has no exact field).
 
 Usage: python3 experiments/summaries/summarize_cellular_reduced.py TABLE.json OUT_PREFIX
 A table named pareto_*: the speed-against-error front (summarize_pareto.py) in OUT_PREFIX.md / .png. Otherwise:
 OUT_PREFIX.md, a row per cell (errors, the closure's amplitude against the Landweber prediction, the transient,
-the cost and the speed-up). Both draw, where matplotlib is available, OUT_PREFIX_fields.png: the velocity field of
+the cost and the speed-up; in the cavity the errors over all and the interior nodes at the final and the worst saved
+time). Both draw, where matplotlib is available, OUT_PREFIX_fields.png: the velocity field of
 the averaged direct SPH and of the reduced model side by side, and their difference, for the most accurate cell
 at the finest resolution. Every number is read from the table.
 """
@@ -107,6 +108,52 @@ def cell_table(table, path):
     return lines + transient_table(table["rows"])
 
 
+def cavity_table(table, path):
+    """The cavity's rows: no exact field, so the errors against the averaged direct SPH alone, over all nodes and the
+    interior ones (>= 3 eta' from the walls), at the final time and the worst over the saved times."""
+    prov = table["provenance"]
+    lines = [f"# {table['experiment']}: the two-dimensional reduced model in the lid-driven cavity\n",
+             f"{table['description']}\n",
+             f"From `{path}`; commit `{prov['git_commit']}`, {prov['compiler']}, {prov['build_type']}, "
+             f"{prov['threads']} thread(s), {prov['date_utc']}; command `{prov['command']}`; complete: "
+             f"{table['complete']}.\n",
+             "Errors: max over the coarse nodes of |v_reduced - v_ref| (vector norm) in % of the lid speed U, against "
+             "the averaged direct SPH, over all nodes and over the interior ones (>= 3 eta' from every wall); *final*: "
+             "at the final time; *worst*: the largest over the saved times; *peak*: the paper's metric, the relative "
+             "difference of the largest |v| at the final time. *total s*: the reduced model's setup plus run (the "
+             "minimum over its repeats); *speed-up*: the direct SPH's wall time over that.\n",
+             "| cell | status | all, final | interior, final | all, worst | interior, worst | peak | total s | steps | "
+             "pair forces / step | direct SPH s | speed-up |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in table["rows"]:
+        if r.get("status") != "ok":
+            lines.append(f"| {r['label']} | {r.get('status')}: {(r.get('error') or '')[:80]} |" + " - |" * 10)
+            continue
+        c = r.get("cost", {})
+
+        def worst(region):
+            values = [get(s, "reduced_vs_averaged_direct_sph", region, "max_rel") for s in r.get("transient", [])]
+            values = [x for x in values if x is not None]
+            return pct(max(values)) if values else "-"
+
+        lines.append(
+            f"| {r['label']} | ok | {pct(error(r))} | "
+            f"{pct(get(r, 'errors', 'vs_averaged_direct_sph', 'interior_nodes', 'max_rel'))} | {worst('all_nodes')} | "
+            f"{worst('interior_nodes')} | {spct(get(r, 'errors', 'vs_averaged_direct_sph', 'peak_relative_difference'))} | "
+            f"{fmt(c['wall_seconds'] + c['setup_seconds'])} | {fmt(c.get('steps'))} | "
+            f"{fmt(c.get('pair_forces_per_step'))} | {fmt(c.get('direct_sph_wall_seconds'))} | {fmt(c.get('speed_up'))} |")
+    rows = [r for r in table["rows"] if r.get("status") == "ok" and r.get("transient")]
+    if rows:
+        lines += ["\nOver the transient (% of U), at the saved times t (in L/U): all nodes / interior nodes.\n",
+                  "| cell | t | all nodes | interior nodes |", "|---|---|---|---|"]
+        for r in rows:
+            times = ", ".join(fmt(s.get("time"), 3) for s in r["transient"])
+            cols = [", ".join(pct(get(s, "reduced_vs_averaged_direct_sph", region, "max_rel")) for s in r["transient"])
+                    for region in ("all_nodes", "interior_nodes")]
+            lines.append(f"| {r['label']} | {times} | " + " | ".join(cols) + " |")
+    return lines
+
+
 def transient_table(rows):
     """Over the saved times, the reduced model against the averaged direct SPH and against the averaged exact
     field, beside the reference's own error (its floor) at the same times: where the floor is of the size of the
@@ -136,6 +183,8 @@ def main(path, prefix):
     if table["experiment"].startswith("pareto_"):
         summarize_pareto.main(path, prefix)
         lines = open(prefix + ".md").read().rstrip("\n").split("\n")
+    elif table["rows"] and get(table["rows"][0], "params", "scene", "name") == "lid-driven-cavity":
+        lines = cavity_table(table, path)
     else:
         lines = cell_table(table, path)
     best = best_row(table["rows"])

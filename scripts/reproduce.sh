@@ -96,6 +96,7 @@ experiments/taylor_green/coarse_continuum_re100.json results/taylor_green/coarse
 experiments/taylor_green/reduced_2d_re100.json results/taylor_green/reduced_2d_re100
 experiments/cavity/tvf_re100.json results/cavity/tvf_re100
 experiments/cavity/coarse_continuum_re100.json results/cavity/coarse_continuum_re100
+experiments/cavity/reduced_2d_re100.json results/cavity/reduced_2d_re100
 experiments/cylinders/tvf_re1.json results/cylinders/tvf_re1
 experiments/cylinders/tvf_re10.json results/cylinders/tvf_re10
 LIST

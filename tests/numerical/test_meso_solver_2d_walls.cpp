@@ -10,6 +10,7 @@
 //     along +x, the discrete divergence keeps its initial value.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "core/averaging/averaging.hpp"
@@ -206,4 +207,52 @@ TEST(ReducedModel2DWalls, TheLidDragsTheTopRowAndTheDivergenceKeepsItsInitialVal
   // Refused: a walled box under another discretization or other equations.
   o.discretization = Discretization::coarse_coarse;
   EXPECT_THROW(MesoSolver2D(*c.scene, *c.kernel, *deconv, *qx, *qy, *integrator, o), ConfigError);
+}
+
+// The fluid's convective flux against the rate of its averaged momentum when its particles move: each fluid particle
+// carried along its own velocity V (walls fixed), d/dt Σ_fluid m ψ(x − q_f) V_f = −div Q at every node, the rate by
+// a central difference in time of the moved particles' average, div Q by central differences of Q at nodes shifted
+// by ±δ (Q as FluidConvectiveFlux forms it: ρ0 times the lattice-to-point Kronecker operator on V ⊗ V).
+TEST(ReducedModel2DWalls, ConvectiveFluxIsTheRateOfTheFluidsAveragedMomentum) {
+  const Cavity c = make_cavity();
+  const TensorMesh2D& lattice = walled_averaging(*c.scene, *c.kernel, c.coarse).fluid_lattice;
+  Eigen::VectorXd vx(lattice.size()), vy(lattice.size());
+  for (int k = 0; k < lattice.size(); ++k) {
+    const Vec2 u = smooth_field(lattice.node(k).x(), lattice.node(k).y());
+    vx[k] = u.x();
+    vy[k] = u.y();
+  }
+  const double rho0 = c.scene->rho0, m = c.scene->particle_mass(), dt = 1e-5;
+  // Σ_fluid m ψ V at the nodes with every fluid particle moved by τ V.
+  const auto momentum = [&](double tau) {
+    Eigen::VectorXd px = Eigen::VectorXd::Zero(c.coarse.size()), py = px;
+    for (int k = 0; k < lattice.size(); ++k) {
+      const Vec2 q = lattice.node(k) + tau * Vec2(vx[k], vy[k]);
+      for (int i = 0; i < c.coarse.size(); ++i) {
+        const double w = m * c.kernel->value(c.coarse.node(i) - q);
+        px[i] += w * vx[k];
+        py[i] += w * vy[k];
+      }
+    }
+    return std::make_pair(px, py);
+  };
+  const auto [pxp, pyp] = momentum(dt);
+  const auto [pxm, pym] = momentum(-dt);
+  const Eigen::VectorXd rate_x = (pxp - pxm) / (2.0 * dt), rate_y = (pyp - pym) / (2.0 * dt);
+  const double delta = 1e-4 * c.scene->eta;
+  const auto flux_at = [&](double sx, double sy) {
+    TensorMesh2D nodes = c.coarse;
+    nodes.x.origin += sx;
+    nodes.y.origin += sy;
+    const ForwardOperator a = make_averaging_operator_2d(*c.kernel, nodes, lattice, Discretization::coarse_fine);
+    return std::array<Eigen::VectorXd, 3>{rho0 * a.apply(vx.cwiseProduct(vx)), rho0 * a.apply(vx.cwiseProduct(vy)),
+                                          rho0 * a.apply(vy.cwiseProduct(vy))};
+  };
+  const auto xp = flux_at(delta, 0), xm = flux_at(-delta, 0), yp = flux_at(0, delta), ym = flux_at(0, -delta);
+  const Eigen::VectorXd div_x = (xp[0] - xm[0] + yp[1] - ym[1]) / (2.0 * delta);
+  const Eigen::VectorXd div_y = (xp[1] - xm[1] + yp[2] - ym[2]) / (2.0 * delta);
+  const double scale = std::max(rate_x.cwiseAbs().maxCoeff(), rate_y.cwiseAbs().maxCoeff());
+  EXPECT_GT(scale, 0.1);
+  EXPECT_LT((rate_x + div_x).cwiseAbs().maxCoeff(), 1e-5 * scale);
+  EXPECT_LT((rate_y + div_y).cwiseAbs().maxCoeff(), 1e-5 * scale);
 }

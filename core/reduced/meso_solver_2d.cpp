@@ -44,12 +44,14 @@ void check_meso_solver_2d(const Scene& scene, const AveragingKernel& kernel, con
 
 void check_meso_run_2d(const Scene& scene, const AveragingKernel& kernel, const json& solver,
                        const MesoSolver2DOptions& o, const std::string& path) {
-  const bool convective = o.equations == CoarseEquations::mass_momentum ||
-                          (o.equations == CoarseEquations::incompressible && o.transport);
+  const bool convective =
+      o.equations == CoarseEquations::mass_momentum || (o.equations == CoarseEquations::incompressible && o.transport);
   if (convective && o.discretization == Discretization::fine_fine)
-    throw ConfigError(path + "/equations", name_of(o.equations) + " averages the closure's velocity products with the "
-                                           "forward operator onto the coarse nodes; the fine_fine operator maps to the "
-                                           "lattice (use closure.discretization coarse_coarse or coarse_fine)");
+    throw ConfigError(path + "/equations",
+                      name_of(o.equations) +
+                          " averages the closure's velocity products with the "
+                          "forward operator onto the coarse nodes; the fine_fine operator maps to the "
+                          "lattice (use closure.discretization coarse_coarse or coarse_fine)");
   if (o.equations == CoarseEquations::mass_momentum && scene.van_der_waals)
     throw ConfigError(path + "/equations", "mass_momentum takes the weakly compressible equation of state; scene '" +
                                                scene.name + "' has the van der Waals one");
@@ -96,8 +98,9 @@ MesoSolver2D::MesoSolver2D(const Scene& scene, const AveragingKernel& kernel, De
   averaged_body_force(scene, kernel, coarse_, fx_, fy_, &rho_bar_);
   lattice_pressure_factor_ = lattice_pressure_factor(scene);
   if (opt_.equations == CoarseEquations::incompressible && !walls_)
-    projection_ = std::make_unique<PeriodicProjection2D>(divergence_symbol(coarse_.nx(), coarse_.x.spacing, opt_.divergence_order),
-                                                         divergence_symbol(coarse_.ny(), coarse_.y.spacing, opt_.divergence_order));
+    projection_ = std::make_unique<PeriodicProjection2D>(
+        divergence_symbol(coarse_.nx(), coarse_.x.spacing, opt_.divergence_order),
+        divergence_symbol(coarse_.ny(), coarse_.y.spacing, opt_.divergence_order));
   particle_mass_ = scene.particle_mass();
   vx_ = vy_ = Eigen::VectorXd::Zero(coarse_.size());
 }
@@ -160,10 +163,16 @@ bool MesoSolver2D::face_stress(bool closure, bool stress, FaceStress& s, std::st
 VelocitySampler MesoSolver2D::closure_sampler(const Eigen::VectorXd& rx, const Eigen::VectorXd& ry) const {
   const auto recon_x = std::make_shared<Reconstruction>(solution_, 2, rx);
   const auto recon_y = std::make_shared<Reconstruction>(solution_, 2, ry);
-  return [recon_x, recon_y](const std::vector<Vec2>& points) {
+  const Scene* walled = walls_ ? &scene_ : nullptr;  // points in a wall come back at its velocity
+  return [recon_x, recon_y, walled](const std::vector<Vec2>& points) {
     Eigen::Matrix2Xd out(2, static_cast<Eigen::Index>(points.size()));
     out.row(0) = recon_x->sample(points).transpose();
     out.row(1) = recon_y->sample(points).transpose();
+    if (walled)
+      for (std::size_t k = 0; k < points.size(); ++k)
+        if (walled->solid_at(points[k].x(), points[k].y()))
+          out.col(static_cast<Eigen::Index>(k)) =
+              walled->solid_velocity ? walled->solid_velocity(points[k].x(), points[k].y()) : Vec2(0.0, 0.0);
     return out;
   };
 }
@@ -206,8 +215,8 @@ std::array<Eigen::VectorXd, 3> MesoSolver2D::convective_flux(const FaceStress& t
   const auto flux = [&](const Eigen::VectorXd& ra, const Eigen::VectorXd& rb, const Eigen::VectorXd& va,
                         const Eigen::VectorXd& vb, const Eigen::VectorXd& wa, const Eigen::VectorXd& wb) {
     const Eigen::VectorXd q = op_.apply(ra.cwiseProduct(rb));
-    return Eigen::VectorXd(rho_bar_.array() *
-                           (q.array() - va.array() * wb.array() - wa.array() * vb.array() + 2.0 * va.array() * vb.array()));
+    return Eigen::VectorXd(rho_bar_.array() * (q.array() - va.array() * wb.array() - wa.array() * vb.array() +
+                                               2.0 * va.array() * vb.array()));
   };
   return {flux(t.rx, t.rx, vx_, vx_, wx, wx), flux(t.rx, t.ry, vx_, vy_, wx, wy), flux(t.ry, t.ry, vy_, vy_, wy, wy)};
 }

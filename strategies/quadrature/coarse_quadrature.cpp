@@ -9,12 +9,12 @@
 #include <map>
 #include <stdexcept>
 
+#include "core/averaging/averaging.hpp"
+#include "core/averaging/bond_weights.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/periodic_fft_2d.hpp"
 #include "core/sph/sph_kernel.hpp"
 #include "core/sph/sph_pair_force.hpp"
-#include "core/averaging/averaging.hpp"
-#include "core/averaging/bond_weights.hpp"
 
 namespace closurelab {
 
@@ -49,16 +49,24 @@ CoarseQuadrature::~CoarseQuadrature() = default;
 
 void CoarseQuadrature::check(const Scene& scene, const TensorMesh2D& nodes,
                              const std::vector<std::string>& components) const {
+  // Walls are known to it in y only (has_walls): solids given by position (the cavity's walls and lid, the
+  // cylinders) would be sampled as fluid and their pairs kept.
+  if (scene.solid_at)
+    throw ConfigError("", "the coarse quadrature knows walls in y only; scene '" + scene.name +
+                              "' has solids given by position (walls of a box, cylinders), whose sites it would "
+                              "sample as fluid: use the exact quadrature");
   // The R-grid must tile the lattice: N/N_C = s_x s_y with whole blocks of sites.
   if (scene.ny % stride_y_ != 0)
-    throw ConfigError("/stride_y", "the R-grid stride " + std::to_string(stride_y_) + " does not divide the lattice's n_y = " +
-                                       std::to_string(scene.ny) + "; allowed strides: " + divisors_of(scene.ny));
+    throw ConfigError("/stride_y", "the R-grid stride " + std::to_string(stride_y_) +
+                                       " does not divide the lattice's n_y = " + std::to_string(scene.ny) +
+                                       "; allowed strides: " + divisors_of(scene.ny));
   if (stride_x_ == 0 && !scene.x_invariant)
     throw ConfigError("/stride_x", "0 (x-integrated R-grid) needs an x-invariant scene; scene '" + scene.name +
                                        "' is not: give a stride dividing n_x = " + std::to_string(scene.nx));
   if (stride_x_ != 0 && scene.nx % stride_x_ != 0)
-    throw ConfigError("/stride_x", "the R-grid stride " + std::to_string(stride_x_) + " does not divide the lattice's n_x = " +
-                                       std::to_string(scene.nx) + "; allowed strides: " + divisors_of(scene.nx) +
+    throw ConfigError("/stride_x", "the R-grid stride " + std::to_string(stride_x_) +
+                                       " does not divide the lattice's n_x = " + std::to_string(scene.nx) +
+                                       "; allowed strides: " + divisors_of(scene.nx) +
                                        (scene.x_invariant ? " (or 0: x-integrated)" : ""));
   check_mesh_matches_box(nodes, scene.box);
   component_indices(components);
@@ -109,8 +117,9 @@ void CoarseQuadrature::set_pair_physics(const Scene& scene, int ha, int hb, cons
   double unlike = 0.0;
   for (const auto& [ya, fa] : rows_of(ha))
     for (const auto& [yb, fb] : rows_of(hb)) {
-      p.mu_ab += fa * fb * pair_viscosity(scene.viscosity_at(Vec2(qa.x(), ya)), scene.viscosity_at(Vec2(qb.x(), yb)),
-                                          scene.pair_viscosity_mean);
+      p.mu_ab += fa * fb *
+                 pair_viscosity(scene.viscosity_at(Vec2(qa.x(), ya)), scene.viscosity_at(Vec2(qb.x(), yb)),
+                                scene.pair_viscosity_mean);
       unlike += fa * fb * (scene.phase(ya) != scene.phase(yb) ? 1.0 : 0.0);
     }
   p.p_over_n2 = p_over_n2_ + unlike * scene.unlike_pair_excess_over_n2();
@@ -252,7 +261,8 @@ QuadratureResult CoarseQuadrature::evaluate(const VelocitySampler& sampler) {
   if (convolution_)
     r.stress = convolve(v);
   else
-    r.stress = weights_.accumulate([&](std::size_t p) { return std::make_pair(pair_force(pairs_[p], v), pairs_[p].rho); });
+    r.stress =
+        weights_.accumulate([&](std::size_t p) { return std::make_pair(pair_force(pairs_[p], v), pairs_[p].rho); });
   r.pair_forces = static_cast<long>(pairs_.size());
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return finite_or_issue(std::move(r), "coarse quadrature");

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 #include "core/sph/particles.hpp"
 #include "core/sph/sph_engine.hpp"
 
@@ -66,6 +67,9 @@ WalledProjection2D::WalledProjection2D(const TensorMesh2D& cells, int order) : c
                                                       " cells along a side; this mesh has " +
                                                       std::to_string(cells.nx()) + " x " + std::to_string(cells.ny()));
   const Eigen::Index n = cells.size();
+  // D and Dᵀ (2n² each), D Dᵀ, its eigenvectors and the pseudo-inverse (n² each), at once.
+  check_allocation(7.0 * static_cast<double>(n) * static_cast<double>(n), sizeof(double),
+                   "the walled projection's dense matrices", "/solver/spacing_over_eta");
   Eigen::MatrixXd d(n, 2 * n);  // column by column: D applied to unit vectors
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   for (Eigen::Index k = 0; k < n; ++k) {

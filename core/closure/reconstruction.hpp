@@ -30,6 +30,10 @@ class Reconstruction {
   Eigen::VectorXd values_;
 };
 
+// Two fields on one 2D mesh (a velocity's components) sampled at the same points, each point located once: row 0
+// `x`'s values, row 1 `y`'s, each equal to its own sample(points) to the bit.
+Eigen::Matrix2Xd sample_pair(const Reconstruction& x, const Reconstruction& y, const std::vector<Vec2>& points);
+
 class ForwardOperator;
 // The field of a solution x of A x = b on A's solution mesh (A built by make_averaging_operator_1d/2d);
 // ConfigError when A carries no mesh (e.g. a user matrix).

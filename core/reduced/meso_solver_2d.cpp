@@ -165,9 +165,7 @@ VelocitySampler MesoSolver2D::closure_sampler(const Eigen::VectorXd& rx, const E
   const auto recon_y = std::make_shared<Reconstruction>(solution_, 2, ry);
   const Scene* walled = walls_ ? &scene_ : nullptr;  // points in a wall come back at its velocity
   return [recon_x, recon_y, walled](const std::vector<Vec2>& points) {
-    Eigen::Matrix2Xd out(2, static_cast<Eigen::Index>(points.size()));
-    out.row(0) = recon_x->sample(points).transpose();
-    out.row(1) = recon_y->sample(points).transpose();
+    Eigen::Matrix2Xd out = sample_pair(*recon_x, *recon_y, points);
     if (walled)
       for (std::size_t k = 0; k < points.size(); ++k)
         if (walled->solid_at(points[k].x(), points[k].y()))

@@ -51,7 +51,8 @@ TEST(DeconvForwardOperator, SparseCutoffDropsOnlyNegligibleEntries) {
   const GaussianKernel k(0.03);
   const UniformMesh1D m = UniformMesh1D::cell_centred(0, 1, 200, false);
   const ForwardOperator de = make_averaging_operator_1d(k, m, m, Discretization::coarse_coarse, OperatorStorage::dense);
-  const ForwardOperator sp = make_averaging_operator_1d(k, m, m, Discretization::coarse_coarse, OperatorStorage::sparse, 1e-14);
+  const ForwardOperator sp =
+      make_averaging_operator_1d(k, m, m, Discretization::coarse_coarse, OperatorStorage::sparse, 1e-14);
   EXPECT_LT(sp.sparse().nonZeros(), de.rows() * de.cols() / 2);  // the cut-off makes it genuinely sparse
   const Eigen::VectorXd x = random_vector(m.count, 3);
   EXPECT_LE((sp.apply(x) - de.apply(x)).norm(), 1e-12 * de.apply(x).norm());
@@ -79,7 +80,8 @@ TEST(DeconvForwardOperator, SymmetryAndNorm) {
   EXPECT_TRUE(kr.is_symmetric());
   const ForwardOperator de = make_averaging_operator_2d(k, c, c, Discretization::coarse_coarse, OperatorStorage::dense);
   EXPECT_NEAR(kr.norm2_estimate(), de.norm2_estimate(), 1e-12);
-  const ForwardOperator sp = make_averaging_operator_2d(k, c, c, Discretization::coarse_coarse, OperatorStorage::sparse);
+  const ForwardOperator sp =
+      make_averaging_operator_2d(k, c, c, Discretization::coarse_coarse, OperatorStorage::sparse);
   EXPECT_NEAR(sp.norm2_estimate(), de.norm2_estimate(), 1e-8);  // power iteration
 }
 
@@ -101,12 +103,33 @@ TEST(DeconvReconstruction, SamplesLinearFieldsExactlyAndWrapsPeriodicAxes) {
 TEST(DeconvReconstruction, ASolutionOnTheFineMeshIsSampledAtArbitraryPoints) {
   // Coarse–fine discretization: the solution lives on the fine mesh and is a field sampled anywhere.
   const GaussianKernel k(0.1);
-  const UniformMesh1D c = UniformMesh1D::cell_centred(0, 1, 10, false), f = UniformMesh1D::cell_centred(0, 1, 40, false);
+  const UniformMesh1D c = UniformMesh1D::cell_centred(0, 1, 10, false),
+                      f = UniformMesh1D::cell_centred(0, 1, 40, false);
   const ForwardOperator a = make_averaging_operator_1d(k, c, f, Discretization::coarse_fine);
   Eigen::VectorXd x(40);
   for (int i = 0; i < 40; ++i) x(i) = 3.0 * f.node(i) - 1.0;
   const Reconstruction r = reconstruction_of(a, x);
   EXPECT_NEAR(r.sample(Vec2(0.4321, 0.0)), 3.0 * 0.4321 - 1.0, 1e-14);
-  EXPECT_THROW(reconstruction_of(ForwardOperator::from_dense(Eigen::MatrixXd::Identity(3, 3)), Eigen::VectorXd::Ones(3)),
-               ConfigError);
+  EXPECT_THROW(
+      reconstruction_of(ForwardOperator::from_dense(Eigen::MatrixXd::Identity(3, 3)), Eigen::VectorXd::Ones(3)),
+      ConfigError);
+}
+
+// Both components of a velocity sampled with one location per point equal each component's own samples to the bit,
+// on a periodic and on a bounded mesh (points beyond the ends clamp).
+TEST(Reconstruction, SamplePairEqualsEachComponentsSamples) {
+  for (const bool periodic : {true, false}) {
+    const TensorMesh2D m{UniformMesh1D::cell_centred(0.0, 1.0, 7, periodic),
+                         UniformMesh1D::cell_centred(0.0, 2.0, 5, periodic)};
+    const Eigen::VectorXd a = Eigen::VectorXd::Random(m.size()), b = Eigen::VectorXd::Random(m.size());
+    const Reconstruction x(m, 2, a), y(m, 2, b);
+    std::vector<Vec2> points;
+    for (int k = 0; k < 200; ++k) points.emplace_back(-0.3 + 0.0083 * k, 2.4 - 0.013 * k);
+    const Eigen::Matrix2Xd both = sample_pair(x, y, points);
+    const Eigen::VectorXd sx = x.sample(points), sy = y.sample(points);
+    for (int k = 0; k < 200; ++k) {
+      EXPECT_EQ(both(0, k), sx[k]);
+      EXPECT_EQ(both(1, k), sy[k]);
+    }
+  }
 }

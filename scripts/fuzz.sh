@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Bounded fuzzing (CI): builds the three libFuzzer targets (spec validation, Matrix Market, CSV particle
-# snapshots) with clang (the libraries instrumented with ASan + UBSan, in ./build-fuzz) and runs each for
+# Bounded fuzzing (CI): builds the four libFuzzer targets (spec validation, Matrix Market, CSV particle
+# snapshots, HDF5 particle snapshots: H5Part and PySPH files written from a structure the bytes describe) with clang (the libraries instrumented with ASan + UBSan, in ./build-fuzz) and runs each for
 # FUZZ_SECONDS (default 60) on a scratch copy of its checked-in seed corpus, so that new inputs are not added to
 # the repository. A crash, a sanitizer report or a leak fails the script.
 set -euo pipefail
@@ -17,10 +17,11 @@ launcher=()
 command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DCLOSURELAB_FUZZ=ON \
       -DCLOSURELAB_BUILD_TESTS=OFF -DCLOSURELAB_BUILD_BENCH=OFF -DCLOSURELAB_WITH_MPI=OFF "${launcher[@]}" >/dev/null
-cmake --build build-fuzz -j "$(nproc)" --target fuzz_spec_validation fuzz_matrix_market fuzz_particle_csv
+cmake --build build-fuzz -j "$(nproc)" --target fuzz_spec_validation fuzz_matrix_market fuzz_particle_csv \
+      fuzz_hdf5_snapshot
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
-for t in matrix_market spec particle_csv; do
+for t in matrix_market spec particle_csv hdf5_snapshot; do
   target=fuzz_${t}; [ "$t" = spec ] && target=fuzz_spec_validation
   cp -r "tests/fuzz/corpus/$t" "$scratch/$t"
   echo "fuzz: $target for ${seconds} s"

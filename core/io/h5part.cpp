@@ -132,7 +132,8 @@ std::vector<H5PartStep> list_steps(hid_t f, const std::string& file) {
   for (auto& s : steps) {
     if (H5Aexists_by_name(f, s.group.c_str(), "TimeValue", H5P_DEFAULT) <= 0) continue;
     Handle a(H5Aopen_by_name(f, s.group.c_str(), "TimeValue", H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-    s.has_time = a.ok() && H5Aread(a.get(), H5T_NATIVE_DOUBLE, &s.time) >= 0 && std::isfinite(s.time);
+    s.has_time = a.ok() && detail::holds_one_value(a.get()) && H5Aread(a.get(), H5T_NATIVE_DOUBLE, &s.time) >= 0 &&
+                 std::isfinite(s.time);
   }
   return steps;
 }
@@ -202,6 +203,8 @@ ParticleSnapshot read_step(hid_t f, long long k, const std::string& file) {
   ParticleSnapshot s;
   if (H5Aexists(g.get(), "TimeValue") > 0) {
     Handle a(H5Aopen(g.get(), "TimeValue", H5P_DEFAULT), H5Aclose);
+    if (a.ok() && !detail::holds_one_value(a.get()))
+      throw ConfigError("", where + ": attribute TimeValue is not a single value");
     if (!a.ok() || H5Aread(a.get(), H5T_NATIVE_DOUBLE, &s.time) < 0)
       throw ConfigError("", where + ": unreadable attribute TimeValue");
   }

@@ -26,4 +26,11 @@ class Hdf5Handle {
   herr_t (*close_)(hid_t);
 };
 
+// True when the attribute `attr` holds exactly one value. H5Aread writes all of an attribute's values, so an array
+// attribute (TimeValue, t or stored of shape [3], as fuzz_hdf5_snapshot wrote them) read into one variable overran it.
+inline bool holds_one_value(hid_t attr) {
+  Hdf5Handle space(H5Aget_space(attr), H5Sclose);
+  return space.ok() && H5Sget_simple_extent_npoints(space.get()) == 1;
+}
+
 }  // namespace closurelab::detail

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/base/errors.hpp"
+#include "core/base/memory_limit.hpp"
 #include "core/io/hdf5_handle.hpp"
 
 namespace closurelab {
@@ -56,13 +57,18 @@ bool read_property(hid_t arrays, const std::string& name, hid_t mem_type, std::v
   if (H5Aexists(set.get(), "stored") > 0) {
     Handle a(H5Aopen(set.get(), "stored", H5P_DEFAULT), H5Aclose);
     std::int64_t stored = 1;
-    if (a.ok() && H5Aread(a.get(), H5T_NATIVE_INT64, &stored) >= 0 && stored == 0) return false;
+    if (a.ok() && detail::holds_one_value(a.get()) && H5Aread(a.get(), H5T_NATIVE_INT64, &stored) >= 0 && stored == 0)
+      return false;
   }
   Handle space(H5Dget_space(set.get()), H5Sclose);
   if (!space.ok() || H5Sget_simple_extent_ndims(space.get()) != 1)
     throw ConfigError("", where + "/" + name + ": not a one-dimensional dataset");
   hsize_t n = 0;
   H5Sget_simple_extent_dims(space.get(), &n, nullptr);
+  // A chunked dataset may declare 2^45 values in a file of a few kB (a bare std::bad_alloc): bounded first, as
+  // the H5Part reader does.
+  check_allocation(static_cast<double>(n), static_cast<double>(sizeof(T)),
+                   where + "/" + name + ": " + std::to_string(n) + " values");
   out.assign(static_cast<std::size_t>(n), T{});
   if (n > 0 && H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw ConfigError("", where + "/" + name + ": cannot read (truncated or corrupt file?)");
@@ -108,6 +114,8 @@ ParticleSnapshot read_pysph_output(const std::string& file) {
     Handle solver(H5Gopen2(f.get(), "solver_data", H5P_DEFAULT), H5Gclose);
     if (solver.ok() && H5Aexists(solver.get(), "t") > 0) {
       Handle a(H5Aopen(solver.get(), "t", H5P_DEFAULT), H5Aclose);
+      if (a.ok() && !detail::holds_one_value(a.get()))
+        throw ConfigError("", file + ":/solver_data: attribute t is not a single value");
       if (!a.ok() || H5Aread(a.get(), H5T_NATIVE_DOUBLE, &s.time) < 0)
         throw ConfigError("", file + ":/solver_data: unreadable attribute t");
     }

@@ -1,7 +1,8 @@
 // libFuzzer target: the CSV particle-snapshot reader (core/io/particle_snapshot.hpp, a snapshot from another
 // code) on arbitrary bytes, written to a scratch .csv file since the reader takes a path. Anything but a clean
 // ConfigError is a finding. (The H5Part and PySPH readers are not fuzzed on arbitrary bytes: they hand the file
-// to the HDF5 library, whose own parser is not hardened against malformed files and is not instrumented here.)
+// to the HDF5 library, whose own parser is not hardened against malformed files and is not instrumented here.
+// fuzz_hdf5_snapshot.cpp fuzzes them on valid HDF5 files of arbitrary structure and content instead.)
 #include <unistd.h>
 
 #include <cstddef>

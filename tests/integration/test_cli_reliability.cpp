@@ -44,7 +44,7 @@ TEST(CliReliability, CommandsWithStdoutOnAFullDeviceExitNonZero) {
   write_text(work / "b.mtx", "%%MatrixMarket matrix array real general\n2 1\n1\n2\n");
   const std::string deconvolve =
       "deconvolve --matrix " + (work / "A.mtx").string() + " --rhs " + (work / "b.mtx").string() + " --method cgls";
-  for (const std::string args : {std::string("list"), std::string("list deconvolver"),
+  for (const std::string& args : {std::string("list"), std::string("list deconvolver"),
                                  "store --store " + (work / "store").string(), std::string("--help"),
                                  std::string("--version"), deconvolve}) {
     SCOPED_TRACE(args);
@@ -198,9 +198,13 @@ TEST(CliReliability, HugeFiniteSnapshotVelocitiesGiveFiniteNorms) {
       ASSERT_TRUE(e["l2_rel"].is_number()) << row["errors"].dump();
       const double l2 = e["l2_rel"].get<double>(), mx = e["max_rel"].get<double>();
       EXPECT_TRUE(std::isfinite(l2) && std::isfinite(mx)) << part;
-      if (mx > 0) EXPECT_GT(l2, 0.0) << part << ": " << e.dump();
+      if (mx > 0) {
+        EXPECT_GT(l2, 0.0) << part << ": " << e.dump();
+      }
     }
-    if (row["status"] == "ok") EXPECT_EQ(o.code, 0);
+    if (row["status"] == "ok") {
+      EXPECT_EQ(o.code, 0);
+    }
   }
 }
 

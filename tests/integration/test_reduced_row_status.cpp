@@ -81,6 +81,8 @@ TEST(ReducedRowStatus, StrictExitsThreeWhenARowIsNotOk) {
                                              " --strict");
     EXPECT_EQ(o.code, healthy ? 0 : 3) << o.err;
     EXPECT_TRUE(std::filesystem::exists(work / "out" / "spec.json"));
-    if (!healthy) EXPECT_NE(o.err.find("1 not ok"), std::string::npos) << o.err;
+    if (!healthy) {
+      EXPECT_NE(o.err.find("1 not ok"), std::string::npos) << o.err;
+    }
   }
 }

@@ -219,7 +219,7 @@ class ForceDensitySolver2D {
 };
 
 // The closure must be linear in its data when the steady system is probed: not cg/cgls (ConfigError at
-// `path`/closure/deconvolver); a parameter rule is served by the two-pass rule of the experiment kind (each
+// `path`/closure/deconvolver); a parameter rule is served by the two-pass rule (core/reduced/closure_rule.hpp; each
 // deconvolver's parameter chosen once from the steady state reached at its configured fixed parameter).
 void check_force_density_closure(const json& resolved_deconvolver, const std::string& path);
 

@@ -23,8 +23,8 @@ std::string integrator_name(const json& resolved_solver);
 std::unique_ptr<Integrator> make_integrator(const Registry& registry, const json& resolved_solver,
                                             const std::string& path);
 // With an integrator that needs an affine rate (backward_euler), cg/cgls is a ConfigError at
-// `path`/solver/time_integration naming the deconvolver (a parameter rule is served by the two-pass rule of the
-// reduced_model kind: chosen once from the steady state reached at the configured fixed parameter).
+// `path`/solver/time_integration naming the deconvolver (a parameter rule is served by the two-pass rule,
+// core/reduced/closure_rule.hpp: chosen once from the steady state reached at the configured fixed parameter).
 // Why a resolved deconvolver is not linear in its data (a parameter rule, or cg/cgls), or "" when it is (the
 // built-in linear ones with fixed parameters: landweber, landweber_relaxed, tikhonov, tsvd; a user-registered
 // deconvolver is taken as linear).

@@ -200,7 +200,7 @@ class MesoSolver {
   // One step of size dt; returns false on a numerical issue (message in `issue`).
   bool step(double dt, std::string& issue);
   // What the closure deconvolves at the current v̄ (the data vector of deconvolver.solve) and the operator it was
-  // bound to: for choosing the closure's parameter once from a state (the two-pass rule, experiments/kinds).
+  // bound to: for choosing the closure's parameter once from a state (the two-pass rule, core/reduced/closure_rule.hpp).
   Eigen::VectorXd deconvolution_data() const;
   const ForwardOperator& forward_operator() const { return op_; }
   double time_step() const;

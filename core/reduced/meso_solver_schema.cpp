@@ -79,7 +79,7 @@ void check_implicit_closure(const json& solver, const Integrator& integrator, co
                             const std::string& path) {
   if (!integrator.needs_affine_rate()) return;
   // An integrator for an affine rate (backward Euler's Jacobian, probed once) is right only when the closure is
-  // linear in v̄. A parameter rule is served by the two-pass rule (experiments/kinds/reduced_model.cpp: the parameter
+  // linear in v̄. A parameter rule is served by the two-pass rule (core/reduced/closure_rule.hpp: the parameter
   // chosen once from the steady state at the configured fixed one, then fixed); a Krylov method's iterate is not
   // linear at any count.
   const std::string name = deconvolver.value("name", "");

@@ -1,11 +1,10 @@
-// Experiment kind "reduced_model": reduced model vs references, errors and cost in one row (with the two-pass rule
-// for a parameter rule under backward Euler; the sections and the row's ending shared with the 2D kinds are
+// Experiment kind "reduced_model": reduced model vs references, errors and cost in one row (a parameter rule under
+// backward Euler by the two-pass rule, core/reduced/closure_rule.hpp; the sections and the row's ending shared with the 2D kinds are
 // reduced_sections.cpp, the reference's averaging and the reference file reference_profiles.cpp).
 // One file a little above the project's 320-line guide: it is one kind's resolve and run, whose steps (reference,
 // oracles, the one or two passes, the transient, the row) share the resolved cell; what other kinds share is out.
 #include "experiments/kinds/reduced_model.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <optional>
 #include <tuple>
@@ -14,6 +13,7 @@
 #include "core/averaging/averaging.hpp"
 #include "core/closure/deconvolver.hpp"
 #include "core/base/errors.hpp"
+#include "core/reduced/closure_rule.hpp"
 #include "core/reduced/implicit_closure.hpp"
 #include "core/reduced/meso_solver.hpp"
 #include "core/base/metrics.hpp"
@@ -169,61 +169,52 @@ class ReducedModel : public ExperimentKind {
     std::vector<std::pair<double, Eigen::VectorXd>> reduced_snapshots;
     bool repeats_identical = true;
     int run_count = 0;
-    // The two-pass rule: backward Euler needs a closure linear in v̄, and a parameter rule's choice moves with the
-    // data. So a rule under backward Euler runs twice: pass 1 to steady state with the deconvolver's configured
-    // fixed parameter; the rule applied once to pass 1's steady data (the vector the closure deconvolves) picks the
-    // parameter; pass 2 runs with it fixed. Both passes and the choice are timed as one reduced run.
-    const json& configured = cfg.at("closure").at("deconvolver");
-    const bool two_pass =
-        make_integrator(reg, cfg.at("solver"), "")->needs_affine_rate() && configured.value("rule", "fixed") != "fixed";
-    json two_pass_record;
+    // The two-pass rule (core/reduced/closure_rule.hpp): backward Euler needs a closure linear in v̄, so a
+    // parameter rule under it is chosen once from pass 1's steady data and fixed for pass 2.
+    ClosureParameterRule rule(reg, cfg.at("closure").at("deconvolver"),
+                              make_integrator(reg, cfg.at("solver"), "")->needs_affine_rate(), opt.noise_level);
+    // The column model and the strategies it holds by reference, built for one pass.
+    struct ColumnModel {
+      std::unique_ptr<Deconvolver> deconvolver;
+      std::unique_ptr<StressQuadrature> quadrature;
+      std::unique_ptr<Integrator> integrator;
+      std::optional<MesoSolver> solver;
+      MesoResult run() { return solver->run(); }
+    };
     const RepeatedReducedRuns timing = repeat_reduced_run(
         [&] {
-          double setup = 0.0, loop = 0.0;
-          json deconvolver_cfg = configured;
-          MesoSolverOptions o = opt;
-          if (run_count > 0) o.progress = nullptr;  // progress lines from the first run only
-          if (two_pass) {
-            json fixed = configured;
-            fixed["rule"] = "fixed";
-            auto deconv = reg.deconvolvers.create(fixed, "/closure/deconvolver");
-            auto quad = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
-            auto integrator = make_integrator(reg, cfg.at("solver"), "");
-            MesoSolverOptions o1 = o;
-            o1.snapshot_times.clear();
-            const auto t0 = std::chrono::steady_clock::now();
-            MesoSolver first(*scene, *kernel, *deconv, *quad, *integrator, o1);
-            if (oracles) first.set_oracles(*oracles);
-            setup += seconds_since(t0);
-            const MesoResult r1 = first.run();
-            const auto t1 = std::chrono::steady_clock::now();
-            two_pass_record = {{"rule", configured.at("rule")}, {"pass_1_status", row_status(r1.status)},
-                               {"pass_1_steps", r1.steps}};
-            deconvolver_cfg = choose_parameter_once(reg, configured, first.forward_operator(), first.deconvolution_data(),
-                                                    opt.noise_level, two_pass_record, "");
-            loop += r1.wall_seconds + seconds_since(t1);
-          }
-          auto deconv = reg.deconvolvers.create(deconvolver_cfg, "/closure/deconvolver");
-          auto quad = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
-          auto integrator = make_integrator(reg, cfg.at("solver"), "");
           std::vector<std::pair<double, Eigen::VectorXd>> snapshots;
-          o.on_snapshot = [&](double t, const Eigen::VectorXd& v) { snapshots.emplace_back(t, v); };
-          const auto t_setup = std::chrono::steady_clock::now();
-          MesoSolver solver(*scene, *kernel, *deconv, *quad, *integrator, o);
-          if (oracles) solver.set_oracles(*oracles);
-          setup += seconds_since(t_setup);
-          MesoResult r = solver.run();
+          const auto build = [&](ClosurePass pass) {
+            auto m = std::make_unique<ColumnModel>();
+            m->deconvolver = rule.deconvolver(pass);
+            m->quadrature = reg.quadratures.create(cfg.at("quadrature"), "/quadrature");
+            m->integrator = make_integrator(reg, cfg.at("solver"), "");
+            MesoSolverOptions o = opt;
+            if (run_count > 0) o.progress = nullptr;  // progress lines from the first run only
+            if (pass == ClosurePass::first)
+              o.snapshot_times.clear();
+            else
+              o.on_snapshot = [&](double t, const Eigen::VectorXd& v) { snapshots.emplace_back(t, v); };
+            m->solver.emplace(*scene, *kernel, *m->deconvolver, *m->quadrature, *m->integrator, o);
+            if (oracles) m->solver->set_oracles(*oracles);
+            return m;
+          };
+          auto passes = run_two_pass(rule, build, [&](ColumnModel& first, const MesoResult& r1) {
+            rule.record()["pass_1_steps"] = r1.steps;
+            rule.choose(first.solver->forward_operator(), first.solver->deconvolution_data());
+          });
+          MesoResult& r = passes.result;
           if (run_count++ > 0) repeats_identical = repeats_identical && r.v == reduced.v && r.steps == reduced.steps;
           reduced = std::move(r);
           reduced_snapshots = std::move(snapshots);
-          return ReducedRunSeconds{setup, loop + reduced.wall_seconds};
+          return ReducedRunSeconds{passes.setup_seconds, passes.loop_seconds};
         },
         timing_policy_from(cfg.at("timing")));
 
     json row;
     row["status"] = row_status(reduced.status);
     row["reduced_model"] = reduced.to_json();
-    if (two_pass) row["reduced_model"]["two_pass_rule"] = two_pass_record;
+    if (rule.two_pass()) row["reduced_model"]["two_pass_rule"] = rule.record();
     const int nn = static_cast<int>(reduced.y.size());
     const double l1 = scene->wall_lo, l2 = scene->wall_hi, peak = scene->analytic_peak;
     const bool walls = scene->has_walls;

@@ -12,6 +12,7 @@
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/metrics.hpp"
+#include "core/reduced/closure_rule.hpp"
 #include "core/reduced/implicit_closure.hpp"
 #include "core/reduced/meso_solver_2d.hpp"
 #include "core/continuum/continuum_navier_stokes_2d.hpp"
@@ -120,6 +121,15 @@ class ReducedModel2D : public ExperimentKind {
       const auto integrator = make_integrator(reg, out["solver"], path);
       check_implicit_closure(out["solver"], *integrator, out["closure"]["deconvolver"], path);
       const json& s = out["solver"];
+      // The two-pass rule chooses a parameter from a steady state (core/reduced/closure_rule.hpp); the stepped 2D
+      // model's runs are transients, so it runs none, and a rule under an integrator that probes the rate's
+      // Jacobian once would be applied at every solve of a closure taken as linear.
+      if (ClosureParameterRule::applies(out["closure"]["deconvolver"], integrator->needs_affine_rate()))
+        throw ConfigError(path + "/closure/deconvolver/rule",
+                          integrator_name(s) + " needs a closure linear in the coarse velocity, and the 2D stepped "
+                                               "model runs no two-pass rule (a transient has no steady state to "
+                                               "choose the parameter from): use rule fixed, or an explicit or ARKODE "
+                                               "integrator");
       const std::string equations = s.at("equations").get<std::string>();
       if (integrator->needs_affine_rate() &&
           (equations == "mass_momentum" || (equations == "incompressible" && s.at("transport").get<bool>())))

@@ -5,13 +5,13 @@
 // experiments/kinds/reference_profiles.hpp, averaged onto the coarse mesh by the same call), with the Darcy
 // permeability beside the scene's reference, and the cost and speed-up (the reduced run repeated as the timing
 // section says; no speed-up against a file).
-#include <chrono>
 #include <cmath>
 #include <optional>
 
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/metrics.hpp"
+#include "core/reduced/closure_rule.hpp"
 #include "core/reduced/force_density_2d.hpp"
 #include "core/sph/sph_run.hpp"
 #include "experiments/kinds/direct_reference.hpp"
@@ -149,43 +149,34 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     ForceDensity2DResult reduced;
     bool repeats_identical = true;
     int run_count = 0;
-    // The two-pass rule (as the 1D kind's): a parameter rule runs pass 1 at the deconvolver's configured fixed
-    // parameter, the rule is applied once to that steady data (each deconvolver to its own: v̄_x for the velocity,
-    // n̄ for the density deviation), and pass 2 runs with the chosen parameters fixed; both passes are timed.
-    const json& configured = cfg.at("closure").at("deconvolver");
-    const bool two_pass = configured.value("rule", "fixed") != "fixed";
-    json two_pass_record;
+    // The two-pass rule (core/reduced/closure_rule.hpp): the steady state is one linear solve, so a parameter rule
+    // is chosen once from pass 1's steady data, each deconvolver from its own (v̄_x for the velocity, n̄ for the
+    // density deviation), and fixed for pass 2.
+    ClosureParameterRule rule(reg, cfg.at("closure").at("deconvolver"), true, opt.noise_level);
+    // The model and the two deconvolvers it holds by reference, built for one pass.
+    struct ForceDensityModel {
+      std::unique_ptr<Deconvolver> velocity, density;
+      std::optional<ForceDensitySolver2D> solver;
+      ForceDensity2DResult run() { return solver->run(); }
+    };
     const RepeatedReducedRuns timing = repeat_reduced_run(
         [&] {
-          double setup = 0.0, loop = 0.0;
-          json velocity_cfg = configured, density_cfg = configured;
-          if (two_pass) {
-            json fixed = configured;
-            fixed["rule"] = "fixed";
-            auto dv1 = reg.deconvolvers.create(fixed, "/closure/deconvolver");
-            auto dn1 = reg.deconvolvers.create(fixed, "/closure/deconvolver");
-            const auto t0 = std::chrono::steady_clock::now();
-            ForceDensitySolver2D first(*scene, *kernel, *dv1, *dn1, opt);
-            setup += seconds_since(t0);
-            const ForceDensity2DResult r1 = first.run();
-            const auto t1 = std::chrono::steady_clock::now();
-            two_pass_record = {{"rule", configured.at("rule")}, {"pass_1_status", row_status(r1.status)}};
-            velocity_cfg = choose_parameter_once(reg, configured, first.velocity_operator(), first.free_vx(),
-                                                 opt.noise_level, two_pass_record, "velocity");
-            density_cfg = choose_parameter_once(reg, configured, first.density_operator(), first.free_density(),
-                                                opt.noise_level, two_pass_record, "density");
-            loop += r1.wall_seconds + seconds_since(t1);
-          }
-          auto dv = reg.deconvolvers.create(velocity_cfg, "/closure/deconvolver");
-          auto dn = reg.deconvolvers.create(density_cfg, "/closure/deconvolver");
-          const auto t_setup = std::chrono::steady_clock::now();
-          ForceDensitySolver2D solver(*scene, *kernel, *dv, *dn, opt);
-          setup += seconds_since(t_setup);
-          ForceDensity2DResult r = solver.run();
+          const auto build = [&](ClosurePass pass) {
+            auto m = std::make_unique<ForceDensityModel>();
+            m->velocity = rule.deconvolver(pass, "velocity");
+            m->density = rule.deconvolver(pass, "density");
+            m->solver.emplace(*scene, *kernel, *m->velocity, *m->density, opt);
+            return m;
+          };
+          auto passes = run_two_pass(rule, build, [&](ForceDensityModel& first, const ForceDensity2DResult&) {
+            rule.choose(first.solver->velocity_operator(), first.solver->free_vx(), "velocity");
+            rule.choose(first.solver->density_operator(), first.solver->free_density(), "density");
+          });
+          ForceDensity2DResult& r = passes.result;
           if (run_count++ > 0)
             repeats_identical = repeats_identical && r.vx == reduced.vx && r.vy == reduced.vy && r.density == reduced.density;
           reduced = std::move(r);
-          return ReducedRunSeconds{setup, loop + reduced.wall_seconds};
+          return ReducedRunSeconds{passes.setup_seconds, passes.loop_seconds};
         },
         timing_policy_from(cfg.at("timing")));
     const TensorMesh2D& mesh = reduced.mesh;
@@ -216,7 +207,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     row["status"] = row_status(reduced.status);
     if (reduced.status != Status::converged) row["message"] = reduced.message;
     row["reduced_model"] = reduced.to_json();
-    if (two_pass) row["reduced_model"]["two_pass_rule"] = two_pass_record;
+    if (rule.two_pass()) row["reduced_model"]["two_pass_rule"] = rule.record();
     // The reference's particles, the direct run's final state or the file's, averaged and scored alike.
     const ParticleSystem* reference = ref ? &ref->particles : nullptr;
     if (reference) {

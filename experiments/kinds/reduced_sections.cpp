@@ -177,28 +177,6 @@ void add_reduced_timing(json& cost, const RepeatedReducedRuns& runs, const json*
   cost["direct_sph_timing"] = timing;
 }
 
-json choose_parameter_once(const Registry& registry, const json& configured, const ForwardOperator& op,
-                           const Eigen::VectorXd& data, double noise_level, json& record, const std::string& what) {
-  auto rule = registry.deconvolvers.create(configured, "/closure/deconvolver");
-  rule->setup(op);
-  const DeconvolutionResult c = rule->solve(data, noise_level);
-  const std::string& name = c.stats.parameter_name;
-  json fixed = configured;
-  fixed["rule"] = "fixed";
-  if (fixed.contains(name) && fixed.at(name).is_number_integer())
-    fixed[name] = std::lround(c.stats.chosen_parameter);
-  else
-    fixed[name] = c.stats.chosen_parameter;
-  record["parameter"] = name;
-  record["pass_1_parameter"] = configured.value(name, json());
-  json& into = what.empty() ? record : record[what];
-  into["chosen"] = fixed.at(name);
-  into["rule_status"] = row_status(c.status);
-  into["rule_message"] = c.stats.message;
-  if (!c.stats.note.empty()) into["rule_note"] = c.stats.note;
-  return fixed;
-}
-
 void finish_reduced_row(json& row, json errors, json cost, const RepeatedReducedRuns& timing, bool repeats_identical,
                         const DeconvolutionIssues& deconvolution_issues, const json* direct_run) {
   add_reduced_timing(cost, timing, direct_run);

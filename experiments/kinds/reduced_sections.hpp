@@ -77,14 +77,6 @@ RepeatedReducedRuns repeat_reduced_run(const std::function<ReducedRunSeconds()>&
 // entry from before it was recorded).
 void add_reduced_timing(json& cost, const RepeatedReducedRuns& runs, const json* direct_run);
 
-// The two-pass rule's choice (pass 2's deconvolver): a deconvolver configured as `configured` (a resolved one with a
-// rule) bound to `op` picks its parameter once from `data`; returns `configured` with rule fixed and that parameter
-// (an integer one rounded), and records chosen, rule_status, rule_message under record[what] (in record itself when
-// `what` is empty) and the parameter's
-// name and configured value under record["parameter"], record["pass_1_parameter"].
-json choose_parameter_once(const Registry& registry, const json& configured, const ForwardOperator& op,
-                           const Eigen::VectorXd& data, double noise_level, json& record, const std::string& what);
-
 // The reduced kinds' last step: the repeated timing into `cost` (add_reduced_timing, with the direct run's record
 // `direct_run`), repeats_identical and the peak memory; `errors` and `cost` into the row; then the row's status the
 // worst of its parts (propagate_worst_status).

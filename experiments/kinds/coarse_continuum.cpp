@@ -209,7 +209,6 @@ class CoarseContinuum2D : public ExperimentKind {
         },
         timing_policy_from(cfg.at("timing")));
 
-    const auto field_json = [](const Field& f) { return json{{"vx", f.x}, {"vy", f.y}}; };
     json errors = json::object();
     json fields = {{"x", mesh.x.nodes()}, {"y", mesh.y.nodes()}, {"baseline", field_json(final_field)}};
     // The exact field on the mode (periodic scenes): e the kernel's symbol at the mode, unit its shape.
@@ -275,7 +274,7 @@ class CoarseContinuum2D : public ExperimentKind {
           snap["baseline_vs_averaged_direct_sph"] = norms(b, dsnap, scale, interior);
           // Against the averaged direct field's own peak at this time (as reduced_model_2d reports it).
           snap["baseline_vs_averaged_direct_sph_at_its_peak"] =
-              norms(b, dsnap, vector_magnitudes(dsnap.x, dsnap.y).maxCoeff());
+              norms(b, dsnap, speed(dsnap).maxCoeff());
           if (exact_mode) {
             const Field avg_exact = averaged_exact(t);
             snap["baseline_vs_averaged_analytic"] = norms(b, avg_exact, scale);

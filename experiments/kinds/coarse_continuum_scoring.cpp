@@ -30,23 +30,8 @@ double mode_amplitude(const Scene& s, double t) {
   return s.taylor_green ? s.taylor_green->factor(t) : s.cellular_mode->amplitude(t);
 }
 
-NodeVelocity scaled(const NodeVelocity& f, double a) { return NodeVelocity{a * f.x, a * f.y}; }
-
 double mode_wavenumber(const Scene& s) {
   return s.taylor_green ? s.taylor_green->wavenumber : s.cellular_mode->wavenumber;
-}
-
-json norms(const NodeVelocity& u, const NodeVelocity& ref, double scale, const std::vector<int>& interior) {
-  const json n = vector_error_norms(u.x, u.y, ref.x, ref.y, scale).to_json();
-  json out = {{"all_nodes", n},
-              {"fluid_nodes", n},
-              {"peak_relative_difference",
-               peak_relative_difference(vector_magnitudes(u.x, u.y), vector_magnitudes(ref.x, ref.y))}};
-  if (!interior.empty()) {
-    const auto pick = [&](const Eigen::VectorXd& v) { return Eigen::VectorXd(v(interior)); };
-    out["interior_nodes"] = vector_error_norms(pick(u.x), pick(u.y), pick(ref.x), pick(ref.y), scale).to_json();
-  }
-  return out;
 }
 
 std::vector<int> interior_nodes(const Scene& s, const TensorMesh2D& mesh) {
@@ -58,10 +43,6 @@ std::vector<int> interior_nodes(const Scene& s, const TensorMesh2D& mesh) {
     if (q.x() >= lo && q.x() <= hi && q.y() >= lo && q.y() <= hi) out.push_back(n);
   }
   return out;
-}
-
-double fitted(const NodeVelocity& f, const NodeVelocity& unit) {
-  return (f.x.dot(unit.x) + f.y.dot(unit.y)) / (unit.x.squaredNorm() + unit.y.squaredNorm());
 }
 
 NodeVelocity averaged_baseline(const Scene& scene, const AveragingKernel& kernel, const TensorMesh2D& mesh,
@@ -150,7 +131,6 @@ bool walled_views(const Scene& scene, const AveragingKernel& kernel, const Tenso
   if (!replay_baseline_views(scene, kernel, mesh, *ns, times, target, coarse) ||
       !replay_baseline_views(scene, kernel, mesh, *fine_ns, times, target, fine))
     return false;
-  const auto field_json = [](const NodeVelocity& f) { return json{{"vx", f.x}, {"vy", f.y}}; };
   fields["averaged_baseline"] = field_json(coarse.at_target);
   fields["averaged_fine_continuum"] = field_json(fine.at_target);
   if (!coarse.centrelines.is_null()) errors["centrelines"] = coarse.centrelines;

@@ -11,24 +11,15 @@
 #include "core/base/params.hpp"
 #include "core/continuum/continuum_navier_stokes_2d.hpp"
 #include "core/sph/scene.hpp"
+#include "experiments/kinds/node_fields.hpp"
 
 namespace closurelab {
-
-struct NodeVelocity {
-  Eigen::VectorXd x, y;  // at the mesh's nodes (flat j · nx + i)
-};
 
 // The scene's mode at unit amplitude at the nodes: the Taylor–Green vortex (−cos kx sin ky, sin kx cos ky) or the
 // cellular mode (sin kx cos ky, −cos kx sin ky); the exact velocity at time t is mode_amplitude(t) times it.
 NodeVelocity mode_shape(const Scene& s, const TensorMesh2D& mesh);
 double mode_amplitude(const Scene& s, double t);
 double mode_wavenumber(const Scene& s);
-NodeVelocity scaled(const NodeVelocity& f, double a);
-// The least-squares amplitude of `f` relative to `unit`: Σ f · unit / Σ |unit|².
-double fitted(const NodeVelocity& f, const NodeVelocity& unit);
-// The error norms of `u` against `ref` relative to `scale` over all nodes (also reported as fluid_nodes) and the
-// relative difference of their peaks; with `interior` (node indices), also "interior_nodes" over those.
-json norms(const NodeVelocity& u, const NodeVelocity& ref, double scale, const std::vector<int>& interior = {});
 // The cavity's nodes at least 3η' from every wall (Scene::in_interior's distance); none for other scenes.
 std::vector<int> interior_nodes(const Scene& s, const TensorMesh2D& mesh);
 

@@ -19,6 +19,7 @@
 #include "core/scenes/analytic.hpp"
 #include "experiments/kinds/coarse_continuum_scoring.hpp"
 #include "experiments/kinds/direct_reference.hpp"
+#include "experiments/kinds/node_fields.hpp"
 #include "experiments/kinds/reduced_sections.hpp"
 #include "experiments/runner/cell_config.hpp"
 #include "experiments/runner/provenance.hpp"
@@ -41,16 +42,6 @@ Field mode_field(const TensorMesh2D& mesh, const Scene::CellularMode& mode, doub
   return f;
 }
 
-// By hypot: a speed of 1e160 squared overflows (it made the scale infinite and every max_rel 0).
-Eigen::VectorXd speed(const Field& f) { return vector_magnitudes(f.x, f.y); }
-
-// The least-squares amplitude of a node field on the mode: Σ v · m / Σ |m|².
-double fitted_amplitude(const Field& f, const Field& unit) {
-  return (f.x.dot(unit.x) + f.y.dot(unit.y)) / (unit.x.squaredNorm() + unit.y.squaredNorm());
-}
-
-json field_json(const Field& f) { return {{"vx", f.x}, {"vy", f.y}}; }
-
 // A cellular scene's scores at the final time: the exact field and its average (each mode times the kernel's symbol
 // at (k, k) / 2π), and the amplitude on the mode against the exact one with the Landweber prediction
 // e / (1 − (1 − e)^{n+1}), e the kernel's symbol (continuum) and e_h the eigenvalue of the discrete operator at the mode.
@@ -64,7 +55,7 @@ void cellular_scores(const Scene& scene, const AveragingKernel& kernel, const js
               averaged = mode_field(mesh, mode, e * mode.amplitude(reduced.time));
   errors["vs_analytic"] = norms(reduced_field, exact, scale);
   errors["vs_averaged_analytic"] = norms(reduced_field, averaged, scale);
-  json amplitude = {{"ratio", fitted_amplitude(reduced_field, unit) / mode.amplitude(reduced.time)}, {"e", e}};
+  json amplitude = {{"ratio", fitted(reduced_field, unit) / mode.amplitude(reduced.time)}, {"e", e}};
   const json& d = cfg.at("closure").at("deconvolver");
   if (d.at("name") == "landweber" && d.at("rule") == "fixed") {
     const int order = d.at("order").get<int>();
@@ -286,8 +277,8 @@ class ReducedModel2D : public ExperimentKind {
             const Field avg_exact = averaged_exact(t), unit = mode_field(mesh, *mode, 1.0);
             snap["reduced_vs_averaged_analytic"] = norms(r, avg_exact, scale);
             snap["direct_sph_vs_averaged_analytic"] = norms(dsnap, avg_exact, scale);
-            snap["amplitude"] = {{"reduced", fitted_amplitude(r, unit)},
-                                 {"direct_sph_average", fitted_amplitude(dsnap, unit)},
+            snap["amplitude"] = {{"reduced", fitted(r, unit)},
+                                 {"direct_sph_average", fitted(dsnap, unit)},
                                  {"averaged_analytic", e * mode->amplitude(t)}};
           }
         } else {

@@ -15,6 +15,7 @@
 #include "core/reduced/force_density_2d.hpp"
 #include "core/sph/sph_run.hpp"
 #include "experiments/kinds/direct_reference.hpp"
+#include "experiments/kinds/node_fields.hpp"
 #include "experiments/kinds/permeability_validation.hpp"
 #include "experiments/kinds/reduced_model_2d.hpp"
 #include "experiments/kinds/reduced_sections.hpp"
@@ -31,38 +32,6 @@ ParamSchema force_density_closure_schema() {
                        "registered deconvolver and its parameters (two instances: velocity and density deviation)"),
           number_param("noise_level", 0.0, "delta handed to the deconvolver's parameter rule", 0.0, {})};
 }
-
-Eigen::VectorXd subset(const Eigen::VectorXd& v, const std::vector<bool>& mask) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(std::count(mask.begin(), mask.end(), true)));
-  Eigen::Index k = 0;
-  for (std::size_t n = 0; n < mask.size(); ++n)
-    if (mask[n]) out[k++] = v[static_cast<Eigen::Index>(n)];
-  return out;
-}
-
-struct Field {
-  Eigen::VectorXd x, y;
-};
-
-// By hypot: a speed of 1e160 squared overflows (it made the scale infinite and every max_rel 0).
-Eigen::VectorXd speed(const Field& f) { return vector_magnitudes(f.x, f.y); }
-
-// The error of u against ref over every node (the headline), the nodes outside the solid and those inside, each
-// max |u − r| / scale (scale: the reference's peak speed) and ‖u − r‖₂ / ‖r‖₂, with the paper's peak metric.
-json norms(const Field& u, const Field& ref, const std::vector<bool>& outside, double scale) {
-  std::vector<bool> inside(outside.size());
-  for (std::size_t n = 0; n < outside.size(); ++n) inside[n] = !outside[n];
-  json out = {{"all_nodes", vector_error_norms(u.x, u.y, ref.x, ref.y, scale).to_json()},
-              {"peak_relative_difference", peak_relative_difference(speed(u), speed(ref))}};
-  const auto part = [&](const std::vector<bool>& m) {
-    return vector_error_norms(subset(u.x, m), subset(u.y, m), subset(ref.x, m), subset(ref.y, m), scale).to_json();
-  };
-  out["fluid_nodes"] = part(outside);  // the nodes outside the solid
-  if (std::count(inside.begin(), inside.end(), true) > 0) out["solid_nodes"] = part(inside);
-  return out;
-}
-
-json field_json(const Field& f) { return {{"vx", f.x}, {"vy", f.y}}; }
 
 class ReducedModelForceDensity2D : public ExperimentKind {
  public:
@@ -182,7 +151,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     const TensorMesh2D& mesh = reduced.mesh;
     std::vector<bool> outside(static_cast<std::size_t>(mesh.size()), true);
     for (int n = 0; n < mesh.size(); ++n) outside[static_cast<std::size_t>(n)] = !scene->is_solid(mesh.node(n).x(), mesh.node(n).y());
-    const Field reduced_field{reduced.vx, reduced.vy};
+    const NodeVelocity reduced_field{reduced.vx, reduced.vy};
     // The cell's momentum per unit mass: Σ ρ̄ v̄ Δ² / (ρ0 L²) = ⟨u⟩ (the window integrates to one over the mesh).
     const Eigen::VectorXd rho_bar =
         average_particles(scene->make_particles(), scene->box, *kernel, mesh, AveragingRequest{}).rho;
@@ -212,9 +181,9 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     const ParticleSystem* reference = ref ? &ref->particles : nullptr;
     if (reference) {
       const MesoFields f = average_particles(*reference, scene->box, *kernel, mesh, AveragingRequest{});
-      const Field direct_field{f.vx, f.vy};
+      const NodeVelocity direct_field{f.vx, f.vy};
       const double scale = speed(direct_field).maxCoeff();
-      errors["vs_averaged_direct_sph"] = norms(reduced_field, direct_field, outside, scale);
+      errors["vs_averaged_direct_sph"] = norms(reduced_field, direct_field, scale, {}, outside);
       errors["scale_peak_speed_of_averaged_direct_sph"] = std::isfinite(scale) ? json(scale) : json(nullptr);
       if (!usable_scale(scale)) {  // the norms are null (metrics.hpp); the row says why
         const std::string why = "the reference's peak averaged speed is " +

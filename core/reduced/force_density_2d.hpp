@@ -95,6 +95,8 @@ struct ForceDensity2DOptions {
   int newton_max_iterations = 20;
 };
 
+// The solver section, each option declared once (an OptionTable, core/base/option_table.hpp, in
+// force_density_2d_schema.cpp): schema (defaults from ForceDensity2DOptions{}) and reader.
 ParamSchema force_density_2d_schema();
 ForceDensity2DOptions force_density_2d_options_from(const json& resolved_solver);
 

@@ -8,58 +8,53 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/memory_limit.hpp"
+#include "core/base/option_table.hpp"
 #include "core/reduced/force_density_2d.hpp"
 #include "core/reduced/implicit_closure.hpp"
 #include "core/reduced/reduced_grid.hpp"
 
 namespace closurelab {
 
-ParamSchema force_density_2d_schema() {
-  const ForceDensity2DOptions d;  // the defaults
-  return {number_param("spacing_over_eta", d.spacing_over_eta, "coarse mesh spacing Delta / eta'", 0.05, 4.0),
-          integer_param("reconstruction_refinement", d.reconstruction_refinement,
-                        "the reconstruction mesh's spacing is Delta / this (1: the coarse mesh; 0: the particle "
-                        "lattice's rows and columns, one column for an x-invariant scene)",
-                        0, 16),
-          string_param("reconstruction_y_nodes", name_of(d.reconstruction_y_nodes),
-                       "along a walled y (reconstruction_refinement >= 1): the reconstruction's nodes cell-centred "
-                       "across the box (a wall surface on a cell face), on_wall_surfaces (the coarse rows refined, "
-                       "continued into the walls) or lattice_rows (the particle lattice's rows, the columns still "
-                       "Delta / refinement)",
-                       names_of<ReconstructionYNodes>()),
-          number_param("window_cutoff", d.window_cutoff,
-                       "window values below this fraction of psi(0) are dropped from the assembled maps", 0.0, 1e-3),
-          number_param("hold_fraction", d.hold_fraction,
-                       "coarse nodes whose window's fluid mass fraction is below this are held: not evolved, not "
-                       "deconvolution data",
-                       0.0, 0.5),
-          string_param("held_node_value", name_of(d.held_node_value),
-                       "what a held node reports: imposed (zero) or reconstructed (the average of the reconstruction)",
-                       names_of<HeldNodeValue>()),
-          bool_param("convective_stress", d.convective_stress,
-                     "add the averaged convective flux -div sum m V V psi of the reconstructed particle velocities "
-                     "(for Re not small; not for an x-invariant scene); the steady state then by Newton's method"),
-          number_param("newton_tolerance", d.newton_tolerance,
-                       "with convective_stress: Newton stops when its step is below this fraction of the state (max norms)",
-                       1e-15, 1e-2),
-          integer_param("newton_max_iterations", d.newton_max_iterations,
-                        "with convective_stress: Newton's steps at most (numerical_issue beyond)", 1, 200)};
+namespace {
+
+const OptionTable<ForceDensity2DOptions>& force_density_2d_options() {
+  using O = ForceDensity2DOptions;
+  static const OptionTable<O> table =
+      OptionTable<O>("/solver")
+          .number("spacing_over_eta", &O::spacing_over_eta, "coarse mesh spacing Delta / eta'", 0.05, 4.0)
+          .integer("reconstruction_refinement", &O::reconstruction_refinement,
+                   "the reconstruction mesh's spacing is Delta / this (1: the coarse mesh; 0: the particle "
+                   "lattice's rows and columns, one column for an x-invariant scene)",
+                   0, 16)
+          .choice("reconstruction_y_nodes", &O::reconstruction_y_nodes,
+                  "along a walled y (reconstruction_refinement >= 1): the reconstruction's nodes cell-centred "
+                  "across the box (a wall surface on a cell face), on_wall_surfaces (the coarse rows refined, "
+                  "continued into the walls) or lattice_rows (the particle lattice's rows, the columns still "
+                  "Delta / refinement)")
+          .number("window_cutoff", &O::window_cutoff,
+                  "window values below this fraction of psi(0) are dropped from the assembled maps", 0.0, 1e-3)
+          .number("hold_fraction", &O::hold_fraction,
+                  "coarse nodes whose window's fluid mass fraction is below this are held: not evolved, not "
+                  "deconvolution data",
+                  0.0, 0.5)
+          .choice("held_node_value", &O::held_node_value,
+                  "what a held node reports: imposed (zero) or reconstructed (the average of the reconstruction)")
+          .boolean("convective_stress", &O::convective_stress,
+                   "add the averaged convective flux -div sum m V V psi of the reconstructed particle velocities "
+                   "(for Re not small; not for an x-invariant scene); the steady state then by Newton's method")
+          .number("newton_tolerance", &O::newton_tolerance,
+                  "with convective_stress: Newton stops when its step is below this fraction of the state (max norms)",
+                  1e-15, 1e-2)
+          .integer("newton_max_iterations", &O::newton_max_iterations,
+                   "with convective_stress: Newton's steps at most (numerical_issue beyond)", 1, 200);
+  return table;
 }
 
-ForceDensity2DOptions force_density_2d_options_from(const json& s) {
-  ForceDensity2DOptions o;
-  o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
-  o.reconstruction_refinement = s.at("reconstruction_refinement").get<int>();
-  o.reconstruction_y_nodes = parse_name<ReconstructionYNodes>(s.at("reconstruction_y_nodes").get<std::string>(),
-                                                              "/solver/reconstruction_y_nodes");
-  o.window_cutoff = s.at("window_cutoff").get<double>();
-  o.hold_fraction = s.at("hold_fraction").get<double>();
-  o.held_node_value = parse_name<HeldNodeValue>(s.at("held_node_value").get<std::string>(), "/solver/held_node_value");
-  o.convective_stress = s.at("convective_stress").get<bool>();
-  o.newton_tolerance = s.at("newton_tolerance").get<double>();
-  o.newton_max_iterations = s.at("newton_max_iterations").get<int>();
-  return o;
-}
+}  // namespace
+
+ParamSchema force_density_2d_schema() { return force_density_2d_options().schema(); }
+
+ForceDensity2DOptions force_density_2d_options_from(const json& s) { return force_density_2d_options().read(s); }
 
 namespace {
 

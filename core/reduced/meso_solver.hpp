@@ -157,8 +157,9 @@ struct MesoResult : ClosureRunResult {
 double coarse_time_step(double kappa, double rho, double spacing, double max_viscosity, double max_speed);
 bool coarse_state_ok(bool finite, double max_abs, double analytic_peak, double divergence_factor, std::string& issue);
 
-// The solver section of a spec ("solver": {...}): its schema, defaults from MesoSolverOptions{} (one source;
-// meso_options_from(resolved defaults) == MesoSolverOptions{}, tested), and the options read from a resolved
+// The solver section of a spec ("solver": {...}), each option declared once (an OptionTable,
+// core/base/option_table.hpp, in meso_solver_schema.cpp): its schema, defaults from MesoSolverOptions{}
+// (meso_options_from(resolved defaults) == MesoSolverOptions{}, tested), and the options read from a resolved
 // section (the run-control parameters as core/base/time_loop.hpp declares them).
 ParamSchema meso_solver_schema();
 MesoSolverOptions meso_options_from(const json& resolved_solver);

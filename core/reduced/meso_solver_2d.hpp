@@ -122,7 +122,8 @@ Eigen::VectorXd to_faces(const TensorMesh2D& cells, const Eigen::VectorXd& at_ce
 // the mean and the Nyquist mode: the divergence the incompressible equations' projection removes.
 std::vector<double> divergence_symbol(int n, double h, int order);
 
-// The solver section of a 2D spec: schema (defaults from MesoSolver2DOptions{}) and reader.
+// The solver section of a 2D spec, each option declared once (an OptionTable, core/base/option_table.hpp, in
+// meso_solver_2d_geometry.cpp): schema (defaults from MesoSolver2DOptions{}) and reader.
 ParamSchema meso_solver_2d_schema();
 MesoSolver2DOptions meso_2d_options_from(const json& resolved_solver);
 

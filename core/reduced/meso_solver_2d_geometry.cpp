@@ -5,49 +5,50 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/memory_limit.hpp"
+#include "core/base/option_table.hpp"
 #include "core/reduced/meso_solver_2d.hpp"
 
 namespace closurelab {
-ParamSchema meso_solver_2d_schema() {
-  const MesoSolver2DOptions d;  // the defaults
-  ParamSchema schema{
-      number_param("kappa", d.kappa, "time-step coefficient of (5.21)-(5.22) (2D: half the 1D default)", 0.0, 1.0, true),
-      number_param("spacing_over_eta", d.spacing_over_eta, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0),
-      integer_param("divergence_order", d.divergence_order,
-                    "order of the staggered face-flux difference: 2 or 4 (both conservative, same face values)", 2, 4),
-      string_param("equations", name_of(d.equations),
-                   "momentum: the linear model (density and pressure the lattice's, no convective stress); "
-                   "mass_momentum: the averaged balances (2.10)-(2.11) in (rho, rho v), with the convective flux of "
-                   "the closure's velocities (2.12) and the pressure of the coarse density; incompressible: the convective flux and "
-                   "the pressure as the multiplier of a discrete projection (core/reduced/meso_solver_2d.hpp)",
-                   names_of<CoarseEquations>()),
-      bool_param("transport", d.transport,
-                 "mass_momentum: the mass flux (2.10) and the convective flux (2.11)-(2.12) (false: rho fixed); "
-                 "incompressible: the convective flux"),
-      bool_param("coarse_pressure", d.coarse_pressure,
-                 "mass_momentum: the pressure of the coarse density, -c_lat P(rho) I (false: the lattice's P*)"),
-      entry_param("time_integration", "explicit",
-                  "the registered integrator that steps the coarse state (closurelab list integrator), a name or "
-                  "{\"name\": ..., its parameters}; mass_momentum needs one whose stability region holds the imaginary "
-                  "axis (arkode_erk), not explicit; arkode_imex takes the viscous part div T_int implicitly, the rest "
-                  "explicitly")};
-  for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
-  return schema;
+namespace {
+
+const OptionTable<MesoSolver2DOptions>& meso_solver_2d_options() {
+  using O = MesoSolver2DOptions;
+  static const OptionTable<O> table =
+      OptionTable<O>("/solver")
+          .number("kappa", &O::kappa, "time-step coefficient of (5.21)-(5.22) (2D: half the 1D default)", 0.0, 1.0, true)
+          .number("spacing_over_eta", &O::spacing_over_eta, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0)
+          .integer("divergence_order", &O::divergence_order,
+                   "order of the staggered face-flux difference: 2 or 4 (both conservative, same face values)", 2, 4)
+          .choice("equations", &O::equations,
+                  "momentum: the linear model (density and pressure the lattice's, no convective stress); "
+                  "mass_momentum: the averaged balances (2.10)-(2.11) in (rho, rho v), with the convective flux of "
+                  "the closure's velocities (2.12) and the pressure of the coarse density; incompressible: the convective flux and "
+                  "the pressure as the multiplier of a discrete projection (core/reduced/meso_solver_2d.hpp)")
+          .boolean("transport", &O::transport,
+                   "mass_momentum: the mass flux (2.10) and the convective flux (2.11)-(2.12) (false: rho fixed); "
+                   "incompressible: the convective flux")
+          .boolean("coarse_pressure", &O::coarse_pressure,
+                   "mass_momentum: the pressure of the coarse density, -c_lat P(rho) I (false: the lattice's P*)")
+          .unbound(entry_param(
+              "time_integration", "explicit",
+              "the registered integrator that steps the coarse state (closurelab list integrator), a name or "
+              "{\"name\": ..., its parameters}; mass_momentum needs one whose stability region holds the imaginary "
+              "axis (arkode_erk), not explicit; arkode_imex takes the viscous part div T_int implicitly, the rest "
+              "explicitly"))
+          .time_loop()
+          .check([](const O& o) {
+            if (o.divergence_order != 2 && o.divergence_order != 4)
+              throw ConfigError("/solver/divergence_order",
+                                "must be 2 or 4; got " + std::to_string(o.divergence_order));
+          });
+  return table;
 }
 
-MesoSolver2DOptions meso_2d_options_from(const json& s) {
-  MesoSolver2DOptions o;
-  o.kappa = s.at("kappa").get<double>();
-  o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
-  o.divergence_order = s.at("divergence_order").get<int>();
-  if (o.divergence_order != 2 && o.divergence_order != 4)
-    throw ConfigError("/solver/divergence_order", "must be 2 or 4; got " + std::to_string(o.divergence_order));
-  o.equations = parse_name<CoarseEquations>(s.at("equations").get<std::string>(), "/solver/equations");
-  o.transport = s.at("transport").get<bool>();
-  o.coarse_pressure = s.at("coarse_pressure").get<bool>();
-  read_time_loop(s, o);
-  return o;
-}
+}  // namespace
+
+ParamSchema meso_solver_2d_schema() { return meso_solver_2d_options().schema(); }
+
+MesoSolver2DOptions meso_2d_options_from(const json& s) { return meso_solver_2d_options().read(s); }
 
 TensorMesh2D coarse_mesh_2d(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta) {
   if (scene.has_walls || !scene.box.periodic_x || !scene.box.periodic_y)

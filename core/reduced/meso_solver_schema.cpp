@@ -1,38 +1,45 @@
-// The reduced model's solver section: schema and reader (declared in meso_solver.hpp).
+// The reduced model's solver section: its options declared once, the schema and reader from them (declared in
+// meso_solver.hpp).
 #include "core/reduced/meso_solver.hpp"
 
 #include "core/base/errors.hpp"
+#include "core/base/option_table.hpp"
 #include "core/reduced/implicit_closure.hpp"
 #include "core/sph/sph_run.hpp"
 
 namespace closurelab {
 
-ParamSchema meso_solver_schema() {
-  const MesoSolverOptions d;  // the defaults
-  ParamSchema schema{
-      number_param("kappa", d.kappa, "time-step coefficient of (5.21)-(5.22)", 0.0, 1.0, true),
-      number_param("spacing_over_eta", d.spacing_over_eta, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0),
-      string_param("scheme", name_of(d.scheme), "paper: (5.11)-(5.14); staggered: conservative flux form",
-                   names_of<MesoScheme>()),
-      bool_param("wall_constraint_forces", d.wall_constraint_forces,
-                 "add the averaged constraint forces holding the wall particles (DESIGN.md par. 6)"),
-      string_param("wall_node_value", name_of(d.wall_node_value),
-                   "reported v at the wall-surface nodes: imposed (5.6) zero, or reconstructed (the average of the "
-                   "closure's reconstruction there; an output only)",
-                   names_of<WallNodeValue>()),
-      string_param("balance", name_of(d.balance),
-                   "right-hand side: stress_divergence (the paper: finite difference of the quadrature's T_int) or "
-                   "force_density (exact divergence of (2.13): the averaged pair forces on the fluid particles, "
-                   "wall constraint forces included; the quadrature is then unused)",
-                   names_of<MesoBalance>()),
-      entry_param("time_integration", "explicit",
-                  "the registered integrator (closurelab list integrator), a name or {\"name\": ..., its parameters}: "
-                  "explicit (forward Euler, the paper), backward_euler (implicit; needs a closure with fixed "
-                  "parameters, whose rate is affine in v), arkode_erk (SUNDIALS adaptive explicit Runge-Kutta) or "
-                  "arkode_imex (SUNDIALS additive Runge-Kutta, implicit part by Newton-Krylov)")};
-  for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
-  return schema;
+namespace {
+
+const OptionTable<MesoSolverOptions>& meso_solver_options() {
+  using O = MesoSolverOptions;
+  static const OptionTable<O> table =
+      OptionTable<O>("/solver")
+          .number("kappa", &O::kappa, "time-step coefficient of (5.21)-(5.22)", 0.0, 1.0, true)
+          .number("spacing_over_eta", &O::spacing_over_eta, "coarse mesh spacing / eta' (paper: 1)", 0.05, 4.0)
+          .choice("scheme", &O::scheme, "paper: (5.11)-(5.14); staggered: conservative flux form")
+          .boolean("wall_constraint_forces", &O::wall_constraint_forces,
+                   "add the averaged constraint forces holding the wall particles (DESIGN.md par. 6)")
+          .choice("wall_node_value", &O::wall_node_value,
+                  "reported v at the wall-surface nodes: imposed (5.6) zero, or reconstructed (the average of the "
+                  "closure's reconstruction there; an output only)")
+          .choice("balance", &O::balance,
+                  "right-hand side: stress_divergence (the paper: finite difference of the quadrature's T_int) or "
+                  "force_density (exact divergence of (2.13): the averaged pair forces on the fluid particles, "
+                  "wall constraint forces included; the quadrature is then unused)")
+          .unbound(entry_param(
+              "time_integration", "explicit",
+              "the registered integrator (closurelab list integrator), a name or {\"name\": ..., its parameters}: "
+              "explicit (forward Euler, the paper), backward_euler (implicit; needs a closure with fixed "
+              "parameters, whose rate is affine in v), arkode_erk (SUNDIALS adaptive explicit Runge-Kutta) or "
+              "arkode_imex (SUNDIALS additive Runge-Kutta, implicit part by Newton-Krylov)"))
+          .time_loop();
+  return table;
 }
+
+}  // namespace
+
+ParamSchema meso_solver_schema() { return meso_solver_options().schema(); }
 
 std::string closure_nonlinearity(const json& deconvolver) {
   // A parameter rule picks its parameter from the data (GCV's choice moves with v̄: under the force-density
@@ -96,16 +103,6 @@ void check_meso_run(const Scene& scene, const AveragingKernel& kernel, const jso
   check_stepped_run(scene, solver, h, coarse_time_step(o.kappa, scene.rho0, h, scene.max_viscosity(), 0.0), path);
 }
 
-MesoSolverOptions meso_options_from(const json& s) {
-  MesoSolverOptions o;
-  o.kappa = s.at("kappa").get<double>();
-  o.spacing_over_eta = s.at("spacing_over_eta").get<double>();
-  o.scheme = parse_name<MesoScheme>(s.at("scheme").get<std::string>(), "/solver/scheme");
-  o.wall_constraint_forces = s.at("wall_constraint_forces").get<bool>();
-  o.wall_node_value = parse_name<WallNodeValue>(s.at("wall_node_value").get<std::string>(), "/solver/wall_node_value");
-  o.balance = parse_name<MesoBalance>(s.at("balance").get<std::string>(), "/solver/balance");
-  read_time_loop(s, o);
-  return o;
-}
+MesoSolverOptions meso_options_from(const json& s) { return meso_solver_options().read(s); }
 
 }  // namespace closurelab

@@ -1,5 +1,5 @@
 #pragma once
-// The coarse continuum baseline inside walls (issue 43): the incompressible Navier–Stokes equations
+// The coarse continuum baseline inside walls: the incompressible Navier–Stokes equations
 //   ∂_t v + ∇·(v ⊗ v) = −∇p/ρ + ν Δv,   ∇·v = 0,
 // in the rectangle covered by a cell-centred mesh, no slip on its four sides, the top side sliding along x at the lid
 // speed U (the lid-driven cavity). A textbook staggered (MAC) discretization (Harlow & Welch 1965; the central

@@ -1,5 +1,5 @@
 #pragma once
-// The coarse continuum baseline (issue 43, "what a user would pick instead"): the incompressible Navier–Stokes
+// The coarse continuum baseline ("what a user would pick instead"): the incompressible Navier–Stokes
 // equations
 //   ρ (∂_t v + ∇·(v ⊗ v)) = −∇p + μ Δv + ρ F,   ∇·v = 0,
 // on a doubly periodic cell-centred mesh — the same TensorMesh2D the 2D reduced model steps on (coarse_mesh_2d,

@@ -1,5 +1,5 @@
 #pragma once
-// The coarse continuum baseline's common face (issue 43, "what a user would pick instead"): an incompressible
+// The coarse continuum baseline's common face ("what a user would pick instead"): an incompressible
 // Navier–Stokes solver stepped on a coarse mesh of cell-centred nodes, whatever its boundaries. Two solvers:
 //   CoarseNavierStokes2D  doubly periodic, collocated, FFT projection (core/continuum/coarse_navier_stokes_2d.hpp);
 //   CavityNavierStokes2D  a rectangle inside no-slip walls, the top one sliding, staggered (MAC) grid

@@ -293,7 +293,7 @@ class CoarseContinuum2D : public ExperimentKind {
         transient.push_back(snap);
       }
       if (!transient.empty()) row["transient"] = transient;
-      // The worst over the saved times (the issue's measure of a transient) per region, without an exact field.
+      // The worst over the saved times (the measure of a transient the targets use) per region, without an exact field.
       if (!exact_mode && !transient.empty()) errors["worst_over_saved_times"] = worst_over_saved_times(transient);
     }
     finish_reduced_row(row, std::move(errors), std::move(cost), timing, repeats_identical, DeconvolutionIssues{},

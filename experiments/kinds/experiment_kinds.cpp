@@ -19,7 +19,7 @@ void register_builtin_experiments(Registry& r) {
   r.experiments.add(make_reduced_model_2d_experiment());
   r.experiments.add(make_reduced_model_force_density_2d_experiment());
   r.experiments.add(make_snapshot_closure_experiment());
-  r.experiments.add(make_coarse_continuum_2d_experiment());  // the coarse continuum baseline (issue 43)
+  r.experiments.add(make_coarse_continuum_2d_experiment());  // the coarse continuum baseline
 }
 
 const Registry& builtin_registry() {

@@ -1,5 +1,5 @@
 #pragma once
-// `closurelab deconvolve --matrix A.mtx --rhs b.mtx ...`: deconvolution of a user system (deconvolution issue)
+// `closurelab deconvolve --matrix A.mtx --rhs b.mtx ...`: deconvolution of a user system
 // with any deconvolver of `registry` (the built-ins and whatever a user's executable registered).
 #include "core/base/registry.hpp"
 #include "experiments/runner/command_options.hpp"

@@ -10,7 +10,7 @@
 //   from t = 1 to 2 (experiments/taylor_green/tvf_re100.json). The early error falls with n; the later, a loss of
 //   the largest speed within t ≈ 0.1–0.4, does not fall from 25 to 50. PySPH's TVF shows the same loss (below), so
 //   it is the formulation as PySPH sets this flow up (the summation density cannot start from the exact pressure),
-//   not this engine: the 1 % target is not met by it.
+//   not this engine: the 1 % target is not met by it.
 #include <gtest/gtest.h>
 
 #include <algorithm>

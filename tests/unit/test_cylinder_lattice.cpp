@@ -45,7 +45,7 @@ TEST(SquareArrayStokes, ReproducesSanganiAcrivosTable) {
 }
 
 // Converged in the number of harmonics: 24 and 32 odd harmonics agree to 1e-7 up to c = 0.4 (a = 0.357 L) and
-// the boundary conditions hold to 1e-6 of the flux, for the two radii of the issue (a = 0.2 L, 0.3 L) as well.
+// the boundary conditions hold to 1e-6 of the flux, for the two radii of the cylinder tables (a = 0.2 L, 0.3 L) too.
 TEST(SquareArrayStokes, ConvergedInTheHarmonics) {
   for (const double a : {0.05, 0.1, 0.2, 0.25, 0.3, radius_for(0.4)}) {
     const SquareArrayStokesResult r24 = square_array_stokes(a, 24), r32 = square_array_stokes(a, 32);

@@ -33,7 +33,7 @@ TEST(WallRows, TheIssuesCaseIsRefusedWithNearbyValidValues) {
     EXPECT_NE(e.message().find("0.07291666667"), std::string::npos) << e.message();  // 7 / 96
     EXPECT_NE(e.message().find("0.08333333333"), std::string::npos) << e.message();  // 8 / 96
   }
-  // Its neighbours of the issue, and the suggested values, are accepted.
+  // The reported case's neighbours, and the suggested values, are accepted.
   for (double eta : {0.0625, 0.09375, 7.0 / 96.0, 8.0 / 96.0})
     EXPECT_NO_THROW(builtin_registry().scenes.create(channel(32, eta), "/scene")) << eta;
   // The cylinder channel's walls likewise (n = 32, 3 eta'/epsilon' = 7.5).

@@ -150,8 +150,15 @@ class ReducedModel2D : public ExperimentKind {
       const long side = scene->cavity ? std::lround(scene->cavity->side / scene->dx) : 0;  // the fluid's lattice
       const long lattice = scene->cavity ? side * side : static_cast<long>(scene->nx) * scene->ny,
                  data = coarse.nx() * static_cast<long>(coarse.ny());
-      check_operator_shape(out["closure"], disc == Discretization::fine_fine ? lattice : data,
-                           disc == Discretization::coarse_coarse ? data : lattice, path);
+      const long rows = disc == Discretization::fine_fine ? lattice : data,
+                 cols = disc == Discretization::coarse_coarse ? data : lattice;
+      check_operator_shape(out["closure"], rows, cols, path);
+      // k is used with rule fixed (a rule chooses its own, and runs no two-pass rule here: refused above).
+      if (out["closure"]["deconvolver"].value("rule", "fixed") == "fixed")
+        check_truncation_rank(out["closure"]["deconvolver"], rows, cols,
+                              "data x unknowns of the " + out["closure"]["discretization"].get<std::string>() +
+                                  " discretization",
+                              false, path);
     }
     return out;
   }

@@ -122,8 +122,9 @@ SealOutcome seal_cell_file(const fs::path& file, bool write) {
   return out;
 }
 
-json make_table(const json& spec, const std::string& spec_file, const std::vector<json>& rows, bool complete) {
-  return {{"experiment", spec.at("name")},
+json make_table(const json& spec, const std::string& spec_file, const std::vector<json>& rows, bool complete,
+               const json& overrides) {
+  json table = {{"experiment", spec.at("name")},
           {"kind", spec.at("kind")},
           {"description", spec.value("description", "")},
           {"spec_file", spec_file},
@@ -131,6 +132,8 @@ json make_table(const json& spec, const std::string& spec_file, const std::vecto
           {"provenance", table_provenance(rows)},
           {"complete", complete},
           {"rows", rows}};
+  if (overrides.is_array() && !overrides.empty()) table["overrides"] = overrides;
+  return table;
 }
 
 bool write_table(const fs::path& file, const json& table, bool computed_any) {

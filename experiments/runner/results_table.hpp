@@ -69,8 +69,10 @@ struct SealOutcome {
 SealOutcome seal_cell_file(const std::filesystem::path& file, bool write);
 
 // The table of `rows` (in the matrix's order): the spec, the table's provenance derived from the rows
-// (provenance.hpp), `complete`, the rows. Nothing of "now" enters it.
-json make_table(const json& spec, const std::string& spec_file, const std::vector<json>& rows, bool complete);
+// (provenance.hpp), `complete`, the rows, and `overrides` (the run's --set assignments with what each replaced,
+// RunOptions::overrides) when there were any. Nothing of "now" enters it.
+json make_table(const json& spec, const std::string& spec_file, const std::vector<json>& rows, bool complete,
+               const json& overrides = json::array());
 
 // When a run rewrites its partial table ("complete": false) between cells. The cells on disk are what a resumed
 // run reads; the partial table is a convenience for a reader during the run. Rewriting it after every cell made

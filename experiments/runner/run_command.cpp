@@ -113,7 +113,11 @@ int run_command(int argc, char** argv, const Registry& registry) {
   const std::string spec_file = args.positional(0);
   opt.spec_file = spec_file;
   json spec = read_json_file(spec_file);
-  for (const std::string& o : args.all("--set")) apply_override(spec, o);
+  for (const std::string& o : args.all("--set")) {
+    const std::vector<std::string> replaced = apply_override(spec, o);
+    for (const std::string& r : replaced) std::cerr << "note: --set " << o << " replaces what the spec varied: " << r << "\n";
+    opt.overrides.push_back({{"set", o}, {"replaced", replaced}});
+  }
   if (dry_run) return print_resolved_cells(spec, registry);
   if (opt.out_dir.empty()) opt.out_dir = default_out_dir(spec);
   configure_reference_store(store_dir, opt.force);

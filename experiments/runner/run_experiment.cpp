@@ -150,7 +150,7 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
           // final table is written below.
           if (!shard.active() && table_schedule.due(run_clock())) {
             const double w0 = run_clock();
-            write_table(table_file, make_table(spec, options.spec_file, finished_rows(), false), true);
+            write_table(table_file, make_table(spec, options.spec_file, finished_rows(), false, options.overrides), true);
             table_schedule.written(w0, run_clock());
           }
         } catch (const std::exception& e) {
@@ -192,7 +192,7 @@ int run_as_rank0(const json& spec, const Registry& registry, const RunOptions& o
                 << "); when every shard is done: closurelab merge " << options.out_dir << "\n";
     } else {
       const bool written =
-          write_table(table_file, make_table(spec, options.spec_file, finished_rows(), true), computed > 0);
+          write_table(table_file, make_table(spec, options.spec_file, finished_rows(), true, options.overrides), computed > 0);
       if (!written) std::cerr << tag << "nothing computed; " << table_file.string() << " left as it is\n";
       std::cerr << tag << (written ? "wrote " : "kept ") << table_file.string() << " (" << counts << ")\n";
     }

@@ -98,14 +98,30 @@ bool starts_with_key(const std::string& key, const std::string& prefix) {
   return key.size() > prefix.size() && key.compare(0, prefix.size(), prefix) == 0 && key[prefix.size()] == '.';
 }
 
-// Sets `key` to `value` in one value of an axis or cell that the spec gives for `given` (a dotted key).
+// The value at dotted `key` inside `v`, or null.
+json dotted_value(const json& v, const std::string& key) {
+  const json* node = &v;
+  std::stringstream ss(key);
+  std::string part;
+  while (std::getline(ss, part, '.')) {
+    if (!node->is_object() || !node->contains(part)) return nullptr;
+    node = &node->at(part);
+  }
+  return *node;
+}
+
+// Sets `key` to `value` in one value of an axis or cell that the spec gives for `given` (a dotted key); a value
+// the spec gave there, other than `value`, is said in `replaced` (`where` names the axis value or cell).
 void override_in(json& given_value, const std::string& given, const std::string& key, const json& value,
-                 const std::string& path) {
+                 const std::string& path, const std::string& where, std::vector<std::string>& replaced) {
   if (given == key) {
+    if (given_value != value) replaced.push_back(where + " gave " + key + " = " + given_value.dump());
     given_value = value;
   } else if (starts_with_key(key, given)) {
     if (!given_value.is_object())
       throw ConfigError(path, "--set " + key + ": this value of '" + given + "' is not an object");
+    const json before = dotted_value(given_value, key.substr(given.size() + 1));
+    if (!before.is_null() && before != value) replaced.push_back(where + " gave " + key + " = " + before.dump());
     set_dotted(given_value, key.substr(given.size() + 1), value, path);
   } else if (starts_with_key(given, key)) {
     throw ConfigError(path, "--set " + key + " sets what '" + given +
@@ -115,7 +131,7 @@ void override_in(json& given_value, const std::string& given, const std::string&
 
 }  // namespace
 
-void apply_override(json& spec, const std::string& assignment) {
+std::vector<std::string> apply_override(json& spec, const std::string& assignment) {
   const std::size_t eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
     throw ConfigError("", "--set needs KEY=VALUE with a dotted KEY (e.g. solver.kappa=0.1), got '" + assignment + "'");
@@ -125,14 +141,21 @@ void apply_override(json& spec, const std::string& assignment) {
   if (!spec.is_object()) throw ConfigError("", "an experiment spec must be a JSON object");
   if (!spec.contains("base")) spec["base"] = json::object();
   if (!spec["base"].is_object()) throw ConfigError("/base", "expected an object");
+  std::vector<std::string> replaced;
   set_dotted(spec["base"], key, value, "--set " + key);
   if (spec.contains("axes") && spec["axes"].is_object()) {
     for (auto& [axis, values] : spec["axes"].items()) {
       if (axis == key) {
+        if (values != json::array({value}))
+          replaced.push_back("the axis " + key + " over " + values.dump() + " is the one value " + value.dump() +
+                             (values.is_array() && values.size() > 1
+                                  ? " (the matrix has " + std::to_string(values.size()) + " times fewer cells)"
+                                  : ""));
         values = json::array({value});  // one value left: the axis still labels the cells
       } else if (values.is_array()) {
         for (std::size_t i = 0; i < values.size(); ++i)
-          override_in(values[i], axis, key, value, "/axes/" + axis + "/" + std::to_string(i));
+          override_in(values[i], axis, key, value, "/axes/" + axis + "/" + std::to_string(i),
+                      "the axis " + axis + "'s value " + std::to_string(i), replaced);
       }
     }
   }
@@ -141,9 +164,12 @@ void apply_override(json& spec, const std::string& assignment) {
       json& cell = spec["cells"][i];
       if (!cell.is_object()) continue;  // expand_matrix reports it
       for (auto& [given, v] : cell.items())
-        if (given != "label") override_in(v, given, key, value, "/cells/" + std::to_string(i) + "/" + given);
+        if (given != "label")
+          override_in(v, given, key, value, "/cells/" + std::to_string(i) + "/" + given,
+                      "cell " + std::to_string(i), replaced);
     }
   }
+  return replaced;
 }
 
 std::vector<MatrixCell> expand_matrix(const json& spec) {

@@ -33,8 +33,10 @@ void set_dotted(json& target, const std::string& dotted, const json& value, cons
 // `closurelab run --set KEY=VALUE`: sets the dotted KEY in the base, in every axis value and every cell that
 // gives KEY or an object above it (an axis over KEY itself keeps the one value), so that VALUE holds in every
 // cell; VALUE is parsed as JSON, else taken as a string. ConfigError when an axis or cell varies a key inside KEY
-// (it would override part of VALUE) or KEY=VALUE is malformed.
-void apply_override(json& spec, const std::string& assignment);
+// (it would override part of VALUE) or KEY=VALUE is malformed. Returns what it replaced that the spec varied, one
+// sentence each (an axis over KEY collapsed to VALUE, an axis value's or a cell's own different value of KEY), for
+// the run to say (a note on stderr, dry run included) and to record (the table's `overrides`).
+std::vector<std::string> apply_override(json& spec, const std::string& assignment);
 
 class ExperimentKind;
 
@@ -61,6 +63,9 @@ struct RunOptions {
   // --strict: a row whose status is not "ok" (numerical_issue, no_convergence: recorded, not trustworthy) makes the
   // exit code 3 once everything is written.
   bool strict = false;
+  // The --set assignments and what each replaced that the spec varied ([{"set": "KEY=VALUE", "replaced":
+  // [...]}], apply_override), recorded in the table as `overrides`; empty: no --set.
+  json overrides = json::array();
   // Called on rank 0 only, when its run is over (e.g. the store summary: under mpirun once, not once per rank).
   std::function<void()> after_run_on_rank0;
 };

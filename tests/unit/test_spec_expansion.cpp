@@ -47,8 +47,16 @@ TEST(SpecExpansion, SetHoldsInEveryCell) {
                                      {{"solver.kappa", 0.2}, {"solver.max_time", 4.0}},
                                      {{"label", "plain"}}}),
                         json{{"solver.scheme", json::array({"paper", "staggered"})}});
-  apply_override(spec, "solver.kappa=0.05");
-  apply_override(spec, "solver.scheme=staggered");  // not JSON: read as a string
+  // What the spec varied and --set replaces is said: the two cells' own kappa, the axis over the scheme.
+  const std::vector<std::string> kappa = apply_override(spec, "solver.kappa=0.05");
+  ASSERT_EQ(kappa.size(), 2u);
+  EXPECT_EQ(kappa[0], "cell 0 gave solver.kappa = 0.1");
+  EXPECT_EQ(kappa[1], "cell 1 gave solver.kappa = 0.2");
+  const std::vector<std::string> scheme = apply_override(spec, "solver.scheme=staggered");  // not JSON: a string
+  ASSERT_EQ(scheme.size(), 1u);
+  EXPECT_EQ(scheme[0], "the axis solver.scheme over [\"paper\",\"staggered\"] is the one value \"staggered\" (the "
+                       "matrix has 2 times fewer cells)");
+  EXPECT_TRUE(apply_override(spec, "solver.scheme=staggered").empty());  // nothing left to replace
   const auto cells = expand_matrix(spec);
   ASSERT_EQ(cells.size(), 3u);  // the axis over solver.scheme keeps the one value
   for (const auto& c : cells) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "core/base/errors.hpp"
@@ -172,6 +173,47 @@ std::vector<std::string> apply_override(json& spec, const std::string& assignmen
   return replaced;
 }
 
+namespace {
+
+// A null given in a spec (the base, an axis value, a cell's key) would reset what it lands on to the defaults (a
+// cell's "solver": null dropped the base's solver section): refused, with what to write instead.
+void refuse_null(const json& v, const std::string& path) {
+  if (v.is_null())
+    throw ConfigError(path, "null is not a value here: leave the key out to keep the base's (or the default), or give "
+                            "the value");
+  if (v.is_object())
+    for (const auto& [k, inner] : v.items()) refuse_null(inner, path + "/" + k);
+}
+
+// The dotted keys of the leaves `value` sets when given at dotted `key` (an object's keys flattened; an array or a
+// scalar is a leaf).
+void leaves_of(const json& value, const std::string& key, std::vector<std::string>& out) {
+  if (value.is_object() && !value.empty()) {
+    for (const auto& [k, inner] : value.items()) leaves_of(inner, key + "." + k, out);
+  } else {
+    out.push_back(key);
+  }
+}
+
+// One key set twice in one group of given keys (a cell's keys, or the axes): once dotted and once inside an object
+// ({"solver": {"kappa": 0.1}, "solver.kappa": 0.2}), which one applied was decided by the keys' order. Refused at
+// the second.
+void refuse_twice_given(const std::vector<std::pair<std::string, std::vector<json>>>& given, const std::string& at) {
+  std::map<std::string, std::string> by_leaf;  // leaf -> the given key that sets it
+  for (const auto& [key, values] : given) {
+    std::vector<std::string> leaves;
+    for (const json& v : values) leaves_of(v, key, leaves);
+    for (const std::string& leaf : leaves) {
+      const auto [it, fresh] = by_leaf.emplace(leaf, key);
+      if (!fresh && it->second != key)
+        throw ConfigError(at + "/" + key, "sets " + leaf + ", which '" + it->second +
+                                              "' sets too: give each key once (dotted or inside its object, not both)");
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<MatrixCell> expand_matrix(const json& spec) {
   if (!spec.is_object()) throw ConfigError("", "an experiment spec must be a JSON object");
   for (const auto& [k, v] : spec.items()) {
@@ -182,6 +224,12 @@ std::vector<MatrixCell> expand_matrix(const json& spec) {
   check_spec_top_level(spec);
   const json base = spec.value("base", json::object());
   if (!base.is_object()) throw ConfigError("/base", "expected an object");
+  refuse_null(base, "/base");
+  {
+    std::vector<std::pair<std::string, std::vector<json>>> given;
+    for (const auto& [k, v] : base.items()) given.push_back({k, {v}});
+    refuse_twice_given(given, "/base");
+  }
 
   check_cell_count(spec);
   // Cartesian product of the axes (keys in sorted order, values in the listed order).
@@ -189,6 +237,13 @@ std::vector<MatrixCell> expand_matrix(const json& spec) {
   if (spec.contains("axes")) {
     const json& axes = spec["axes"];
     if (!axes.is_object()) throw ConfigError("/axes", "expected an object of dotted keys to value lists");
+    std::vector<std::pair<std::string, std::vector<json>>> given;
+    for (const auto& [key, values] : axes.items()) {
+      if (!values.is_array()) continue;  // reported below
+      for (std::size_t i = 0; i < values.size(); ++i) refuse_null(values[i], "/axes/" + key + "/" + std::to_string(i));
+      given.push_back({key, values.get<std::vector<json>>()});
+    }
+    refuse_twice_given(given, "/axes");
     for (const auto& [key, values] : axes.items()) {
       const std::string at = "/axes/" + key;
       if (!values.is_array() || values.empty()) throw ConfigError(at, "expected a non-empty array of values");
@@ -211,6 +266,13 @@ std::vector<MatrixCell> expand_matrix(const json& spec) {
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string at = "/cells/" + std::to_string(i);
       if (!list[i].is_object()) throw ConfigError(at, "expected an object");
+      std::vector<std::pair<std::string, std::vector<json>>> given;
+      for (const auto& [k, v] : list[i].items()) {
+        if (k == "label") continue;
+        refuse_null(v, at + "/" + k);
+        given.push_back({k, {v}});
+      }
+      refuse_twice_given(given, at);
       for (const auto& [cfg, label] : (has_axes ? combos : std::vector<std::pair<json, std::string>>{{base, ""}})) {
         json c = cfg;
         std::string cell_label = label;

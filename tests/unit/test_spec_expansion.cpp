@@ -66,6 +66,27 @@ TEST(SpecExpansion, SetHoldsInEveryCell) {
   }
 }
 
+TEST(SpecExpansion, ANullOrAKeyGivenTwiceIsRefusedAtItsPath) {
+  const auto path_of = [](const json& spec) {
+    try {
+      expand_matrix(spec);
+    } catch (const ConfigError& e) {
+      return e.path();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(path_of(spec_with(json::array({{{"solver", nullptr}}}))), "/cells/0/solver");
+  EXPECT_EQ(path_of(spec_with(json::array({{{"solver", {{"kappa", nullptr}}}}}))), "/cells/0/solver/kappa");
+  EXPECT_EQ(path_of(spec_with(nullptr, json{{"solver.kappa", json::array({0.1, nullptr})}})), "/axes/solver.kappa/1");
+  EXPECT_EQ(path_of(spec_with(json::array({{{"solver", {{"kappa", 0.1}}}, {"solver.kappa", 0.2}}}))),
+            "/cells/0/solver.kappa");
+  EXPECT_EQ(path_of(spec_with(nullptr, json{{"solver", json::array({{{"kappa", 0.1}}, {{"scheme", "paper"}}})},
+                                           {"solver.kappa", json::array({0.2, 0.3})}})),
+            "/axes/solver.kappa");
+  // Different keys of one object, dotted and inside it, are each given once.
+  EXPECT_EQ(path_of(spec_with(json::array({{{"solver", {{"kappa", 0.1}}}, {"solver.scheme", "paper"}}}))), "accepted");
+}
+
 TEST(SpecExpansion, SetRefusesWhatItCannotHoldEverywhere) {
   json spec = spec_with(nullptr, json{{"solver.kappa", json::array({0.1, 0.2})}});
   EXPECT_THROW(apply_override(spec, "solver={\"scheme\": \"paper\"}"), ConfigError);  // the axis varies inside it

@@ -159,6 +159,13 @@ class SnapshotClosure : public ExperimentKind {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec))
       throw ConfigError(path + "/snapshot/file", "'" + file + "' is not a readable file");
+    // The file read and checked against the scene as the run reads it (the step there, the particles in the box,
+    // their phases and count), so that --dry-run and the matrix's validation refuse what the cell would fail on.
+    try {
+      particles_for(*scene, read_particle_snapshot(file, snapshot_step(file, out["snapshot"])), file);
+    } catch (const ConfigError& e) {
+      throw ConfigError(path + "/snapshot/file", e.message());
+    }
     out["closure"] = resolve_section(cell, "closure", closure_schema(), path);
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
     const ReducedGrid m =

@@ -161,8 +161,9 @@ TEST(CliReliability, SnapshotSpecPicksTheStepByIndexOrTime) {
     fs::remove_all(work / "ok");
   }
   CliOutcome o = run({{"file", f}, {"step", 2}}, "bad1");
-  EXPECT_EQ(o.code, 1) << o.err;  // the cell fails with the steps listed (the file is read when the cell runs)
-  EXPECT_NE(read_text(work / "bad1" / "s.json").find("there is no Step#2"), std::string::npos);
+  EXPECT_EQ(o.code, 2) << o.err;  // refused at validation with the steps listed (the file is read there)
+  EXPECT_NE(o.err.find("there is no Step#2"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("/base/snapshot/file"), std::string::npos) << o.err;
   o = run({{"file", f}, {"time", 0.5}}, "bad2");
   EXPECT_EQ(o.code, 2) << o.err;
   EXPECT_NE(o.err.find("/snapshot/time"), std::string::npos) << o.err;

@@ -27,7 +27,7 @@ TEST(H5PartTruncated, ATruncatedFileIsOneClearMessageAndNoLibraryNoise) {
     fs::resize_file(file, static_cast<std::uintmax_t>(keep * static_cast<double>(full)));
     fs::remove_all(work / "out");
     const CliOutcome o = run_closurelab(work, "run " + (work / "spec.json").string() + " --out " + (work / "out").string());
-    EXPECT_EQ(o.code, 1) << o.err;  // the cell fails, with its error in the table
+    EXPECT_EQ(o.code, 2) << o.err;  // refused at validation (the file is read there), nothing run
     EXPECT_NE(o.err.find("is truncated"), std::string::npos) << o.err;
     EXPECT_NE(o.err.find("declares " + std::to_string(full)), std::string::npos) << o.err;
     EXPECT_EQ(o.err.find("infinite loop"), std::string::npos) << o.err;

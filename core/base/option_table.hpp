@@ -17,6 +17,7 @@
 //   my_options().read(resolved_solver); // MyOptions
 #include <cstdint>
 #include <functional>
+#include <type_traits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -37,29 +38,35 @@ class OptionTable {
   // `section`: the section's JSON path ("/solver"), for the messages of a reader.
   explicit OptionTable(std::string section) : section_(std::move(section)) {}
 
-  OptionTable&& number(std::string name, double O::*member, std::string doc, std::optional<double> min = {},
+  // `member`: a pointer to O's member, or a callable giving a reference to it from an O& (a nested member:
+  // [](O& o) -> double& { return o.engine.factor; }).
+  template <class M>
+  OptionTable&& number(std::string name, M member, std::string doc, std::optional<double> min = {},
                        std::optional<double> max = {}, bool exclusive_min = false) && {
-    specs_.push_back(number_param(name, defaults_.*member, std::move(doc), min, max, exclusive_min));
-    readers_.push_back([name, member](const json& s, O& o) { o.*member = s.at(name).template get<double>(); });
+    specs_.push_back(number_param(name, field(member, defaults_), std::move(doc), min, max, exclusive_min));
+    readers_.push_back([name, member](const json& s, O& o) { field(member, o) = s.at(name).template get<double>(); });
     return std::move(*this);
   }
-  OptionTable&& integer(std::string name, int O::*member, std::string doc, std::optional<double> min = {},
+  template <class M>
+  OptionTable&& integer(std::string name, M member, std::string doc, std::optional<double> min = {},
                         std::optional<double> max = {}) && {
-    specs_.push_back(integer_param(name, defaults_.*member, std::move(doc), min, max));
-    readers_.push_back([name, member](const json& s, O& o) { o.*member = s.at(name).template get<int>(); });
+    specs_.push_back(integer_param(name, field(member, defaults_), std::move(doc), min, max));
+    readers_.push_back([name, member](const json& s, O& o) { field(member, o) = s.at(name).template get<int>(); });
     return std::move(*this);
   }
-  OptionTable&& boolean(std::string name, bool O::*member, std::string doc) && {
-    specs_.push_back(bool_param(name, defaults_.*member, std::move(doc)));
-    readers_.push_back([name, member](const json& s, O& o) { o.*member = s.at(name).template get<bool>(); });
+  template <class M>
+  OptionTable&& boolean(std::string name, M member, std::string doc) && {
+    specs_.push_back(bool_param(name, field(member, defaults_), std::move(doc)));
+    readers_.push_back([name, member](const json& s, O& o) { field(member, o) = s.at(name).template get<bool>(); });
     return std::move(*this);
   }
   // An enumeration, by its name table (core/base/enum_names.hpp): the choices are its names, in table order.
-  template <class E>
-  OptionTable&& choice(std::string name, E O::*member, std::string doc) && {
-    specs_.push_back(string_param(name, name_of(defaults_.*member), std::move(doc), names_of<E>()));
+  template <class M>
+  OptionTable&& choice(std::string name, M member, std::string doc) && {
+    using E = std::remove_cvref_t<std::invoke_result_t<M, O&>>;
+    specs_.push_back(string_param(name, name_of(field(member, defaults_)), std::move(doc), names_of<E>()));
     readers_.push_back([name, member, path = section_ + "/" + name](const json& s, O& o) {
-      o.*member = parse_name<E>(s.at(name).template get<std::string>(), path);
+      field(member, o) = parse_name<E>(s.at(name).template get<std::string>(), path);
     });
     return std::move(*this);
   }
@@ -86,12 +93,21 @@ class OptionTable {
   // The options of a section resolved against schema() (every option present).
   O read(const json& resolved) const {
     O o;
+    read_into(resolved, o);
+    return o;
+  }
+  // The same into `o`, whose other members stay (a section that fills part of a struct another section fills too).
+  void read_into(const json& resolved, O& o) const {
     for (const Reader& r : readers_) r(resolved, o);
     for (const Check& c : checks_) c(o);
-    return o;
   }
 
  private:
+  template <class M>
+  static decltype(auto) field(const M& member, O& o) {
+    return std::invoke(member, o);
+  }
+
   std::string section_;
   O defaults_{};
   ParamSchema specs_;

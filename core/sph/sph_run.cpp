@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/base/errors.hpp"
+#include "core/base/option_table.hpp"
 #include "core/base/time_loop.hpp"
 #include "core/sph/sph_engine.hpp"
 
@@ -92,30 +93,30 @@ SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRun
   return res;
 }
 
-ParamSchema sph_solver_schema() {
-  const SphRunOptions d;  // the defaults
-  ParamSchema schema{
-      number_param("kappa", d.kappa, "time-step coefficient kappa of (5.21)-(5.22)", 0.0, 1.0, true),
-      string_param("formulation", std::string(name_of(d.engine.formulation)),
-                   "standard: weakly compressible SPH, pair force (5.1), velocity Verlet; transport_velocity: Adami, Hu "
-                   "& Adams (2013) as PySPH's TVFScheme (particles advected with a transport velocity, extra stress "
-                   "rho v (v~ - v), step kappa min(h/(c + U), h^2/(2 nu)); no walls or solids yet)",
-                   names_of<SphFormulation>()),
-      number_param("transport_background_pressure_factor", d.engine.transport_background_pressure_factor,
-                   "transport_velocity: background pressure p_b of the transport velocity / (rho0 c^2) (PySPH's pb / p0)",
-                   0.0, {}, true)};
-  for (auto& p : time_loop_schema(d)) schema.push_back(std::move(p));
-  return schema;
+namespace {
+
+const OptionTable<SphRunOptions>& sph_solver_options() {
+  using O = SphRunOptions;
+  static const OptionTable<O> table =
+      OptionTable<O>("/solver")
+          .number("kappa", &O::kappa, "time-step coefficient kappa of (5.21)-(5.22)", 0.0, 1.0, true)
+          .choice("formulation", [](O& o) -> SphFormulation& { return o.engine.formulation; },
+                  "standard: weakly compressible SPH, pair force (5.1), velocity Verlet; transport_velocity: Adami, Hu "
+                  "& Adams (2013) as PySPH's TVFScheme (particles advected with a transport velocity, extra stress "
+                  "rho v (v~ - v), step kappa min(h/(c + U), h^2/(2 nu)); walls and solids by the generalized wall condition of Adami, Hu & Adams 2012)")
+          .number("transport_background_pressure_factor",
+                  [](O& o) -> double& { return o.engine.transport_background_pressure_factor; },
+                  "transport_velocity: background pressure p_b of the transport velocity / (rho0 c^2) (PySPH's pb / p0)",
+                  0.0, {}, true)
+          .time_loop();
+  return table;
 }
 
-SphRunOptions sph_run_options_from(const json& s) {
-  SphRunOptions o;
-  o.kappa = s.at("kappa").get<double>();
-  o.engine.formulation = parse_name<SphFormulation>(s.at("formulation").get<std::string>(), "/formulation");
-  o.engine.transport_background_pressure_factor = s.at("transport_background_pressure_factor").get<double>();
-  read_time_loop(s, o);
-  return o;
-}
+}  // namespace
+
+ParamSchema sph_solver_schema() { return sph_solver_options().schema(); }
+
+SphRunOptions sph_run_options_from(const json& s) { return sph_solver_options().read(s); }
 
 json upgraded_sph_solver_params(json solver) {
   if (!solver.is_object()) return solver;

@@ -53,7 +53,7 @@ class ReducedModel : public ExperimentKind {
   std::vector<KindSection> sections() const override {
     return {{"scene", "the scene (required)", "scene", {}},
             {"kernel", "the averaging kernel; its eta must equal the scene's", "kernel", {}},
-            {"closure", "the deconvolution closure", "", closure_schema()},
+            {"closure", "the deconvolution closure", "", closure_section<MesoSolverOptions>().schema()},
             {"quadrature", "the stress quadrature (default exact)", "quadrature", {}},
             {"solver", "the coarse solver", "", meso_solver_schema()},
             {"reference", "the direct SPH reference, or a particle file in its place", "", reference_with_file_schema()},
@@ -73,7 +73,7 @@ class ReducedModel : public ExperimentKind {
                         "scene '" + scene->name + "' is not x-invariant; the coarse solver handles x-invariant scenes only");
     if (!scene->analytic_vx) throw ConfigError(path + "/scene", "scene '" + scene->name + "' has no analytic solution");
     auto kernel = build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
-    out["closure"] = resolve_section(cell, "closure", closure_schema(), path);
+    out["closure"] = resolve_section(cell, "closure", closure_section<MesoSolverOptions>().schema(), path);
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
     out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
     out["solver"] = resolve_section(cell, "solver", meso_solver_schema(), path);
@@ -311,8 +311,7 @@ class ReducedModel : public ExperimentKind {
 
   static MesoSolverOptions options(const json& cfg) {
     MesoSolverOptions o = meso_options_from(cfg.at("solver"));
-    o.discretization = parse_discretization(cfg.at("closure").at("discretization").get<std::string>(), "/closure/discretization");
-    o.noise_level = cfg.at("closure").at("noise_level").get<double>();
+    closure_section<MesoSolverOptions>().read_into(cfg.at("closure"), o);
     return o;
   }
 };

@@ -83,7 +83,7 @@ class ReducedModel2D : public ExperimentKind {
   std::vector<KindSection> sections() const override {
     return {{"scene", "the scene (required; one with a cellular mode, or the lid-driven cavity)", "scene", {}},
             {"kernel", "the averaging kernel; its eta must equal the scene's", "kernel", {}},
-            {"closure", "the deconvolution closure (both components, Kronecker operator)", "", closure_schema()},
+            {"closure", "the deconvolution closure (both components, Kronecker operator)", "", closure_section<MesoSolver2DOptions>().schema()},
             {"quadrature", "the stress quadrature (default exact), one instance per face mesh", "quadrature", {}},
             {"solver", "the 2D coarse solver", "", meso_solver_2d_schema()},
             {"reference", "the direct SPH reference", "", reference_schema()},
@@ -101,7 +101,7 @@ class ReducedModel2D : public ExperimentKind {
                                                                     "solution) nor the cavity's walls; use the cellular, "
                                                                     "the taylor-green or the lid-driven-cavity scene");
     auto kernel = build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
-    out["closure"] = resolve_section(cell, "closure", closure_schema(), path);
+    out["closure"] = resolve_section(cell, "closure", closure_section<MesoSolver2DOptions>().schema(), path);
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
     out["quadrature"] = reg.quadratures.resolve(cell.value("quadrature", json{{"name", "exact"}}), path + "/quadrature");
     out["solver"] = resolve_section(cell, "solver", meso_solver_2d_schema(), path);
@@ -310,9 +310,7 @@ class ReducedModel2D : public ExperimentKind {
  private:
   static MesoSolver2DOptions options(const json& cfg) {
     MesoSolver2DOptions o = meso_2d_options_from(cfg.at("solver"));
-    o.discretization =
-        parse_discretization(cfg.at("closure").at("discretization").get<std::string>(), "/closure/discretization");
-    o.noise_level = cfg.at("closure").at("noise_level").get<double>();
+    closure_section<MesoSolver2DOptions>().read_into(cfg.at("closure"), o);
     return o;
   }
 };

@@ -11,6 +11,7 @@
 #include "core/averaging/averaging.hpp"
 #include "core/base/errors.hpp"
 #include "core/base/metrics.hpp"
+#include "core/base/option_table.hpp"
 #include "core/reduced/closure_rule.hpp"
 #include "core/reduced/force_density_2d.hpp"
 #include "core/sph/sph_run.hpp"
@@ -27,10 +28,15 @@ namespace closurelab {
 
 namespace {
 
-ParamSchema force_density_closure_schema() {
-  return {object_param("deconvolver", json{{"name", "tikhonov"}},
-                       "registered deconvolver and its parameters (two instances: velocity and density deviation)"),
-          number_param("noise_level", 0.0, "delta handed to the deconvolver's parameter rule", 0.0, {})};
+// "closure", declared once: the deconvolver (created twice from the registry) and the noise level it reads.
+const OptionTable<ForceDensity2DOptions>& force_density_closure_section() {
+  using O = ForceDensity2DOptions;
+  static const OptionTable<O> table =
+      OptionTable<O>("/closure")
+          .unbound(object_param("deconvolver", json{{"name", "tikhonov"}},
+                                "registered deconvolver and its parameters (two instances: velocity and density deviation)"))
+          .number("noise_level", &O::noise_level, "delta handed to the deconvolver's parameter rule", 0.0);
+  return table;
 }
 
 class ReducedModelForceDensity2D : public ExperimentKind {
@@ -47,7 +53,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     return {{"scene", "the scene (required; periodic in x, periodic or walled in y, solids by position)", "scene", {}},
             {"kernel", "the averaging kernel; its eta must equal the scene's", "kernel", {}},
             {"closure", "the deconvolution closure (dense operators on the reconstruction mesh)", "",
-             force_density_closure_schema()},
+             force_density_closure_section().schema()},
             {"solver", "the 2D force-density solver", "", force_density_2d_schema()},
             {"reference", "the direct SPH reference, or a particle file in its place", "", reference_with_file_schema()},
             {"timing", "how the reduced run is repeated for its time (minimum, median, spread)", "",
@@ -59,7 +65,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     json out;
     auto scene = build_scene(cell, path, reg, &out["scene"]);
     auto kernel = build_kernel(cell, path, reg, scene->eta, &out["kernel"]);
-    out["closure"] = resolve_section(cell, "closure", force_density_closure_schema(), path);
+    out["closure"] = resolve_section(cell, "closure", force_density_closure_section().schema(), path);
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
     out["solver"] = resolve_section(cell, "solver", force_density_2d_schema(), path);
     out["reference"] = resolve_section(cell, "reference", reference_with_file_schema(), path);
@@ -234,7 +240,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
  private:
   static ForceDensity2DOptions options(const json& cfg) {
     ForceDensity2DOptions o = force_density_2d_options_from(cfg.at("solver"));
-    o.noise_level = cfg.at("closure").at("noise_level").get<double>();
+    force_density_closure_section().read_into(cfg.at("closure"), o);
     return o;
   }
 };

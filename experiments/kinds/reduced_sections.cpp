@@ -13,13 +13,6 @@
 
 namespace closurelab {
 
-ParamSchema closure_schema() {
-  return {object_param("deconvolver", json{{"name", "landweber"}, {"order", 0}}, "registered deconvolver and its parameters"),
-          string_param("discretization", "coarse_coarse", "discretization of R_eta (par. 4.2)",
-                       names_of<Discretization>()),
-          number_param("noise_level", 0.0, "delta handed to the deconvolver's parameter rule", 0.0, {})};
-}
-
 void check_operator_shape(const json& closure, long rows, long cols, const std::string& path) {
   if (rows == cols) return;
   const json& d = closure.at("deconvolver");

@@ -4,6 +4,7 @@
 #include <functional>
 #include <string>
 
+#include "core/base/option_table.hpp"
 #include "core/base/params.hpp"
 #include "core/base/repeated_timing.hpp"
 #include "core/base/registry.hpp"
@@ -14,8 +15,19 @@
 
 namespace closurelab {
 
-// "closure": the registered deconvolver with its parameters, the discretization of R_η (§4.2), the noise level.
-ParamSchema closure_schema();
+// "closure", declared once for the options struct `O` of a stepped reduced model (MesoSolverOptions,
+// MesoSolver2DOptions) that holds what it reads: the registered deconvolver with its parameters (an entry the kind
+// creates from the registry), the discretization of R_η (§4.2) and the noise level δ handed to a parameter rule.
+template <class O>
+const OptionTable<O>& closure_section() {
+  static const OptionTable<O> table =
+      OptionTable<O>("/closure")
+          .unbound(object_param("deconvolver", json{{"name", "landweber"}, {"order", 0}},
+                                "registered deconvolver and its parameters"))
+          .choice("discretization", &O::discretization, "discretization of R_eta (par. 4.2)")
+          .number("noise_level", &O::noise_level, "delta handed to the deconvolver's parameter rule", 0.0);
+  return table;
+}
 // "reference": whether to run the direct SPH of the same scene, its solver section, the observe-mesh spacing.
 ParamSchema reference_schema();
 // A transient section's snapshot times (`times`, an array at JSON path `path`): finite, positive, ascending;

@@ -64,12 +64,19 @@ std::string table_to_csv(const json& table) {
       if (row.contains(section))
         flatten(std::string(section) == "params" ? params_by_current_names(row[section]) : row[section], section, r);
     for (const auto& [k, v] : r) columns.insert(k);
-    for (const char* key : {"id", "label", "status"})
+    for (const char* key : {"id", "label", "status", "note"})
       if (row.contains(key) && row[key].is_string()) r[key] = row[key].get<std::string>();
+    // The row's error or status message, where it has one (a failed cell's "error", a status's "message").
+    for (const char* key : {"error", "message"})
+      if (!r.count("message") && row.contains(key) && row[key].is_string()) r["message"] = row[key].get<std::string>();
+    if (!r.count("message") && row.contains("reduced_model") && row["reduced_model"].is_object() &&
+        row["reduced_model"].contains("message") && row["reduced_model"]["message"].is_string())
+      r["message"] = row["reduced_model"]["message"].get<std::string>();
     records.push_back(std::move(r));
   }
   std::vector<std::string> order = {"id", "label", "status"};
   order.insert(order.end(), columns.begin(), columns.end());
+  order.insert(order.end(), {"message", "note"});  // the status's why and a warning that leaves it as it is
   std::ostringstream os;
   for (std::size_t c = 0; c < order.size(); ++c) os << (c ? "," : "") << csv_field(order[c]);
   os << "\n";
@@ -169,7 +176,8 @@ const CommandSpec& export_command_spec() {
       "export",
       {{"TABLE.json"}},
       "  Writes the table as CSV (to stdout, or FILE): one record per row with id, label, status and every value\n"
-      "  of the row's params, errors and cost as a dotted column (errors.vs_averaged_direct_sph.all_nodes.max_rel).\n"
+      "  of the row's params, errors and cost as a dotted column (errors.vs_averaged_direct_sph.all_nodes.max_rel),\n"
+      "  then message (the row's error or status message) and note (a warning that leaves the status as it is).\n"
       "  With --long, the rows' coarse profiles and fields instead: one record per coarse node (id, label, i, j, x, y,\n"
       "  then one column per field: reduced_vx, direct_average_vy, ... for a 2D row; reduced, analytic, ... for a\n"
       "  column row's profile, whose i and x are empty).",

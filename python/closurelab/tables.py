@@ -13,7 +13,8 @@
 (`params.scene.n`, `errors.vs_averaged_direct_sph.all_nodes.max_rel`, `cost.reduced_timing.min_seconds`); errors
 are fractions, as stored (relative to the peak the row's kind names). A row without a value has NaN (None) there.
 Short lists of numbers (at most 8, such as snapshot times) are kept as lists; longer ones (profiles, fields) are
-left out: read them with `load_fields`. Also `message` (the row's error or status message, where it has one) and
+left out: read them with `load_fields`. Also `message` (the row's error or status message, where it has one),
+`note` (a warning that leaves the status as it is, e.g. a parameter rule's choice at the edge of its scan) and
 `table` (the path read, which `load_fields` uses). The table's own keys (`experiment`, `kind`, `description`,
 `complete`, `path`) are in `df.attrs`. Rows written before the node sets were renamed (`all` beside `all_nodes`)
 are read with `fluid_nodes`, as the summaries read them; rows that name the averaging width `eta_over_ly` (the
@@ -102,6 +103,7 @@ def _record(row, path):
     if message is None and isinstance(row.get("reduced_model"), dict):
         message = row["reduced_model"].get("message")
     r["message"] = message
+    r["note"] = row.get("note")
     r["table"] = path
     return r
 
@@ -113,7 +115,8 @@ def load(path):
     table = read_table(path)
     records = [_record(row, path) for row in table["rows"]]
     front = ["id", "label", "status"]
-    columns = front + sorted({c for r in records for c in r} - set(front) - {"message", "table"}) + ["message", "table"]
+    tail = ["message", "note", "table"]
+    columns = front + sorted({c for r in records for c in r} - set(front) - set(tail)) + tail
     df = pd.DataFrame.from_records(records, columns=columns)
     for k in ("experiment", "kind", "description", "complete"):
         df.attrs[k] = table.get(k)

@@ -104,7 +104,10 @@ def main(exe=None):
                 continue
             header = next(csv.reader(io.StringIO(r.stdout)))
             frame = frame if frame is not None else load(path)
-            mine = [c for c in frame.columns if c not in ("message", "table")]
+            mine = [c for c in frame.columns if c != "table"]
+            rows = list(csv.DictReader(io.StringIO(r.stdout)))
+            check([row["message"] or None for row in rows] == [m if isinstance(m, str) and m else None for m in frame["message"]],
+                  f"export {os.path.basename(path)}: the message column differs from load's")
             check(sorted(header) == sorted(mine),
                   f"export {os.path.basename(path)}: columns differ: only export {sorted(set(header) - set(mine))[:5]}, "
                   f"only load {sorted(set(mine) - set(header))[:5]}")

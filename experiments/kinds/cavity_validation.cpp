@@ -10,7 +10,7 @@
 #include "core/sph/sph_engine.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/validation_row.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/provenance.hpp"
 
 namespace closurelab {
 

@@ -8,7 +8,7 @@
 #include "core/scenes/analytic.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/validation_row.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/provenance.hpp"
 
 namespace closurelab {
 

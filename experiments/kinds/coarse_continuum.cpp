@@ -24,7 +24,7 @@
 #include "experiments/kinds/coarse_continuum_scoring.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/reduced_sections.hpp"
-#include "experiments/runner/cell_config.hpp"
+#include "experiments/kinds/cell_config.hpp"
 
 namespace closurelab {
 

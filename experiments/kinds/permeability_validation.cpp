@@ -6,7 +6,7 @@
 
 #include "core/sph/sph_engine.hpp"
 #include "experiments/kinds/cellular_validation.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/provenance.hpp"
 
 namespace closurelab {
 

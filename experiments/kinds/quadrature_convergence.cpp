@@ -16,8 +16,8 @@
 #include "core/base/errors.hpp"
 #include "core/base/metrics.hpp"
 #include "core/closure/stress_quadrature.hpp"
-#include "experiments/runner/cell_config.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/cell_config.hpp"
+#include "experiments/kinds/provenance.hpp"
 #include "strategies/quadrature/coarse_quadrature.hpp"
 #include "strategies/quadrature/exact_quadrature.hpp"
 

@@ -19,11 +19,11 @@
 #include "core/base/metrics.hpp"
 #include "core/sph/sph_run.hpp"
 #include "core/closure/stress_quadrature.hpp"
-#include "experiments/runner/cell_config.hpp"
+#include "experiments/kinds/cell_config.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/reduced_sections.hpp"
 #include "experiments/kinds/reference_profiles.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/provenance.hpp"
 
 namespace closurelab {
 

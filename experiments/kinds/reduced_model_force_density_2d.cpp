@@ -21,8 +21,8 @@
 #include "experiments/kinds/reduced_model_2d.hpp"
 #include "experiments/kinds/reduced_sections.hpp"
 #include "experiments/kinds/reference_profiles.hpp"
-#include "experiments/runner/cell_config.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/cell_config.hpp"
+#include "experiments/kinds/provenance.hpp"
 
 namespace closurelab {
 

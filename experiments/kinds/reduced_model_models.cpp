@@ -19,7 +19,7 @@
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/kinds/reduced_model.hpp"
 #include "experiments/kinds/reduced_model_2d.hpp"
-#include "experiments/runner/cell_config.hpp"
+#include "experiments/kinds/cell_config.hpp"
 
 namespace closurelab {
 

@@ -8,8 +8,8 @@
 #include "core/closure/forward_operator.hpp"
 #include "core/sph/engine_version.hpp"
 #include "core/sph/sph_run.hpp"
-#include "experiments/runner/cell_config.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/cell_config.hpp"
+#include "experiments/kinds/provenance.hpp"
 
 namespace closurelab {
 

@@ -19,7 +19,7 @@
 #include "core/base/json_reader.hpp"
 #include "core/io/h5part.hpp"
 #include "experiments/kinds/store_entry_lock.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/provenance.hpp"
 
 namespace closurelab {
 

@@ -23,8 +23,8 @@
 #include "core/io/particle_snapshot.hpp"
 #include "core/reduced/reduced_grid.hpp"
 #include "core/sph/sph_engine.hpp"
-#include "experiments/runner/cell_config.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/cell_config.hpp"
+#include "experiments/kinds/provenance.hpp"
 
 namespace closurelab {
 

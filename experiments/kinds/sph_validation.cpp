@@ -21,14 +21,14 @@
 #include "core/sph/sph_engine.hpp"
 #include "core/sph/sph_kernel.hpp"
 #include "core/sph/sph_run.hpp"
-#include "experiments/runner/cell_config.hpp"
+#include "experiments/kinds/cell_config.hpp"
 #include "experiments/kinds/cellular_validation.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/permeability_validation.hpp"
 #include "experiments/kinds/cavity_validation.hpp"
 #include "experiments/kinds/taylor_green_validation.hpp"
 #include "core/scenes/ghia_cavity.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/provenance.hpp"
 
 namespace closurelab {
 

@@ -6,7 +6,7 @@
 #include "core/base/errors.hpp"
 #include "core/base/json_reader.hpp"
 #include "experiments/kinds/reference_store.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/provenance.hpp"
 
 namespace closurelab {
 

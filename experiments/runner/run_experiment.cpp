@@ -16,7 +16,7 @@
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/runner/cell_scheduler.hpp"
 #include "experiments/runner/out_folder.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/provenance.hpp"
 #include "experiments/runner/rank_group.hpp"
 #include "experiments/runner/results_table.hpp"
 #include "experiments/runner/runner.hpp"

@@ -10,7 +10,7 @@
 #include "core/base/errors.hpp"
 #include "experiments/kinds/experiment_kind.hpp"
 #include "experiments/runner/out_folder.hpp"
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/provenance.hpp"
 #include "experiments/runner/results_table.hpp"
 #include "experiments/runner/runner.hpp"
 

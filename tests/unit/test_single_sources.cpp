@@ -11,7 +11,7 @@
 #include "core/reduced/meso_solver_2d.hpp"
 #include "core/sph/sph_run.hpp"
 #include "experiments/kinds/reduced_model.hpp"
-#include "experiments/runner/cell_config.hpp"
+#include "experiments/kinds/cell_config.hpp"
 
 using namespace closurelab;
 

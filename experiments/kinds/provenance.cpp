@@ -1,4 +1,4 @@
-#include "experiments/runner/provenance.hpp"
+#include "experiments/kinds/provenance.hpp"
 
 #include <omp.h>
 #include <sys/resource.h>

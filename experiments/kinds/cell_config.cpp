@@ -1,4 +1,4 @@
-#include "experiments/runner/cell_config.hpp"
+#include "experiments/kinds/cell_config.hpp"
 
 #include <cmath>
 #include <sstream>

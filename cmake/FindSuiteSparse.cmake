@@ -1,6 +1,6 @@
-# Finds the SuiteSparse piece closurelab uses (CHOLMOD, for the Tikhonov strategy's sparse normal equations)
-# on systems whose SuiteSparse ships no CMake package files (Debian 12: SuiteSparse 5.12). Defines the
-# imported target SuiteSparse::CHOLMOD.
+# Finds the SuiteSparse piece closurelab uses (CHOLMOD, for the Tikhonov strategy's sparse normal equations and the
+# direct SPH's linearised steady state) on systems whose SuiteSparse ships no CMake package files (Debian 12:
+# SuiteSparse 5.12). Defines the imported target SuiteSparse::CHOLMOD.
 include(FindPackageHandleStandardArgs)
 find_path(SuiteSparse_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse)
 find_library(SuiteSparse_CONFIG_LIBRARY suitesparseconfig)

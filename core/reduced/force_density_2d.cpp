@@ -11,6 +11,7 @@
 
 #include "core/base/errors.hpp"
 #include "core/base/repeated_timing.hpp"
+#include "core/sph/lattice_stencil.hpp"
 #include "core/sph/sph_kernel.hpp"
 #include "core/sph/sph_pair_force.hpp"
 
@@ -72,7 +73,7 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
   interp_.resize(np);
   for (std::size_t a = 0; a < np; ++a) interp_[a] = bilinear_weights(recon_, Vec2(lattice.x[a], lattice.y[a]));
   double n0 = 0.0;
-  const std::vector<Offset> stencil = pair_stencil(scene.smoothing_kernel(), dx, n0);
+  const std::vector<LatticeOffset> stencil = lattice_pair_stencil(scene.smoothing_kernel(), dx, n0);
   const double m = scene.particle_mass();
   const double p0 = scene.pressure(n0, m), dn = 1e-6 * n0;
   const double dp_dn = (scene.pressure(n0 + dn, m) - scene.pressure(n0 - dn, m)) / (2.0 * dn);
@@ -111,7 +112,7 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
       const double mu_a = scene.phase_viscosity.at(static_cast<std::size_t>(lattice.phase[a]));
       // Particle a's own coefficients, summed over its pairs before they are interpolated once.
       double own_visc = 0.0, own_px = 0.0, own_py = 0.0, own_cx = 0.0, own_cy = 0.0;
-      for (const Offset& o : stencil) {
+      for (const LatticeOffset& o : stencil) {
         if (!scene.box.periodic_y && (j + o.dj < 0 || j + o.dj >= lny)) continue;  // beyond a wall's outer face
         const long bi = ((i + o.di) % lnx + lnx) % lnx, bj = ((j + o.dj) % lny + lny) % lny;
         const auto b = static_cast<std::size_t>(site[static_cast<std::size_t>(bj * lnx + bi)]);

@@ -1,7 +1,7 @@
 #pragma once
 // The 2D force-density model's assembly helpers (core/reduced/force_density_2d.cpp only): a scratch row over the
-// reconstruction nodes, the window's 1D factor on an axis, the SPH pair stencil of the square lattice, and the
-// weighted first difference over the reconstruction mesh's links (the prior of first_difference_zero_ends).
+// reconstruction nodes, the window's 1D factor on an axis and the weighted first difference over the reconstruction
+// mesh's links (the prior of first_difference_zero_ends). The lattice's pair stencil: core/sph/lattice_stencil.hpp.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <algorithm>
@@ -64,26 +64,6 @@ inline std::vector<std::pair<int, double>> axis_window(const AveragingKernel& ke
   const double drop = cutoff * kernel.factor(0.0);
   out.erase(std::remove_if(out.begin(), out.end(), [&](const auto& e) { return e.second < drop; }), out.end());
   return out;
-}
-
-// The SPH pair stencil of the square lattice of spacing dx: the offsets within the smoothing function's support,
-// with F = w'(r)/r and q_ab = q_a − q_b = −(di, dj) dx; n0 = Σ w, the lattice's number density.
-struct Offset {
-  int di, dj;
-  double F, qx, qy;
-};
-inline std::vector<Offset> pair_stencil(const SmoothingKernel& w, double dx, double& n0) {
-  std::vector<Offset> stencil;
-  n0 = w.w(0.0);
-  const int reach = static_cast<int>(std::ceil(w.support() / dx));
-  for (int dj = -reach; dj <= reach; ++dj)
-    for (int di = -reach; di <= reach; ++di) {
-      const double r = std::hypot(di, dj) * dx;
-      if ((di == 0 && dj == 0) || r >= w.support()) continue;
-      stencil.push_back({di, dj, w.dw(r) / r, -di * dx, -dj * dx});
-      n0 += w.w(r);
-    }
-  return stencil;
 }
 
 // The weighted first difference over the links of the reconstruction mesh (ForwardOperator::difference_links): one row

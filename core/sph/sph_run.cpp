@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <numbers>
 #include <sstream>
 
 #include "core/base/errors.hpp"
 #include "core/base/option_table.hpp"
 #include "core/base/time_loop.hpp"
+#include "core/sph/linearised_steady.hpp"
 #include "core/sph/sph_engine.hpp"
 
 namespace closurelab {
@@ -53,7 +55,31 @@ SphRunResult SphRunResult::from_json(const json& j) {
   return r;
 }
 
+namespace {
+
+SphRunResult linearised_steady_run(const Scene& scene, ParticleSystem& ps, const SphRunOptions& opt) {
+  const auto cpu0 = std::clock();
+  const LinearisedSteadyResult r = solve_linearised_steady(scene, ps);
+  SphRunResult res;
+  res.status = r.converged ? Status::converged : Status::numerical_issue;
+  res.message = r.message;
+  res.wall_seconds = r.seconds();
+  res.cpu_seconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  res.last_relative_change = r.relative_residual;
+  res.total_particles = static_cast<std::int64_t>(ps.size());
+  for (std::size_t a = 0; a < ps.size(); ++a) res.moving_particles += ps.fixed[a] ? 0 : 1;
+  res.active_particles = res.total_particles;
+  if (opt.progress)
+    opt.progress("direct SPH: linearised steady state, " + std::to_string(r.velocity_unknowns + r.density_unknowns) +
+                 " unknowns, " + std::to_string(r.nonzeros) + " nonzeros, " + std::to_string(r.seconds()) + " s (assembly " + std::to_string(r.assemble_seconds) + ", factor " + std::to_string(r.factor_seconds) + ", solve " + std::to_string(r.solve_seconds) + ")");
+  if (opt.observable && r.converged) opt.observable(ps);
+  return res;
+}
+
+}  // namespace
+
 SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& ps, const SphRunOptions& opt) {
+  if (opt.method == SphMethod::linearised_steady) return linearised_steady_run(scene, ps, opt);
   SphEngine engine(scene, ps, opt.engine);
   engine.compute_accelerations();
   SteppedModel model;
@@ -99,6 +125,11 @@ const OptionTable<SphRunOptions>& sph_solver_options() {
   using O = SphRunOptions;
   static const OptionTable<O> table =
       OptionTable<O>("/solver")
+          .choice("method", &O::method,
+                  "march: time steps of the engine (mode steady or target_time); linearised_steady: the steady state "
+                  "on the frozen lattice by one sparse solve of the linearised pair forces and summation density "
+                  "(CHOLMOD LDLT under METIS; standard formulation, mode steady, particles on their sites; the fixed "
+                  "particles keep their density): the like-for-like comparator of a steady reduced model")
           .number("kappa", &O::kappa, "time-step coefficient kappa of (5.21)-(5.22)", 0.0, 1.0, true)
           .choice("formulation", [](O& o) -> SphFormulation& { return o.engine.formulation; },
                   "standard: weakly compressible SPH, pair force (5.1), velocity Verlet; transport_velocity: Adami, Hu "
@@ -124,6 +155,7 @@ json upgraded_sph_solver_params(json solver) {
   if (!solver.contains("formulation")) solver["formulation"] = std::string(name_of(d.engine.formulation));
   if (!solver.contains("transport_background_pressure_factor"))
     solver["transport_background_pressure_factor"] = d.engine.transport_background_pressure_factor;
+  if (!solver.contains("method")) solver["method"] = std::string(name_of(d.method));
   return solver;
 }
 
@@ -170,6 +202,20 @@ void check_stepped_run(const Scene& scene, const json& s, double spacing, double
 
 void check_direct_run(const Scene& scene, const json& s, const std::string& path) {
   const SphFormulation formulation = formulation_of(s, path);
+  if (s.contains("method") &&
+      parse_name<SphMethod>(s.at("method").get<std::string>(), path + "/method") == SphMethod::linearised_steady) {
+    if (s.contains("mode") && s.at("mode").get<std::string>() != "steady")
+      throw ConfigError(path + "/method", "linearised_steady gives the steady state only: set mode to steady");
+    if (formulation != SphFormulation::standard)
+      throw ConfigError(path + "/method", "linearised_steady linearises the standard formulation's pair forces; got " +
+                                              name_of(formulation));
+    try {
+      check_linearised_steady(scene, "/scene");
+    } catch (const ConfigError& e) {
+      throw ConfigError(path + "/method", e.message() + " (at " + e.path() + ")");
+    }
+    return;
+  }
   if (formulation == SphFormulation::transport_velocity && scene.wall_model == WallModel::ghost_velocity)
     throw ConfigError(path + "/formulation", "transport_velocity has its own wall condition (Adami, Hu & Adams 2012); "
                                              "scene '" + scene.name + "' asks for ghost-velocity walls: set the "

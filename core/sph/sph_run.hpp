@@ -14,7 +14,19 @@
 
 namespace closurelab {
 
+// How the direct SPH reaches its result (SphRunOptions::method).
+enum class SphMethod {
+  march,              // time steps of the engine (the time loop: to steady state or to a target time)
+  linearised_steady,  // the steady state on the frozen lattice by one sparse solve (core/sph/linearised_steady.hpp)
+};
+template <>
+struct EnumNames<SphMethod> {
+  static constexpr std::array<std::pair<SphMethod, std::string_view>, 2> table{
+      {{SphMethod::march, "march"}, {SphMethod::linearised_steady, "linearised_steady"}}};
+};
+
 struct SphRunOptions : TimeLoopOptions {
+  SphMethod method = SphMethod::march;
   double kappa = 0.25;  // (5.21)–(5.22)
   SphEngineOptions engine;  // the formulation (standard, or transport velocity) and its background pressure
   // The field whose change decides steady state; default: the x-velocities of the moving particles.
@@ -39,14 +51,17 @@ struct SphRunResult : TimeLoopResult {
   static SphRunResult from_json(const json& j);  // the inverse of to_json (a stored run's record)
 };
 
+// Under method linearised_steady: no step (steps 0, time 0), the particles' velocities the solve's, wall_seconds its
+// assembly, factorisation and solve, last_relative_change its final relative residual; the observable is taken
+// once, at the end (as a steady run's last observation).
 SphRunResult run_direct_sph(const Scene& scene, ParticleSystem& particles, const SphRunOptions& options);
 
 // The parameter schema of the direct solver as experiment specs name it ("solver": {...}); its defaults are
 // SphRunOptions{}'s (one source), and sph_run_options_from(resolved defaults) == SphRunOptions{} (tested).
 ParamSchema sph_solver_schema();
 SphRunOptions sph_run_options_from(const json& resolved_solver);
-// A solver section stored before `formulation` and `transport_background_pressure_factor` were added, with their
-// defaults (the standard formulation it ran): ExperimentKind::upgraded_params of the kinds with a direct solver.
+// A solver section stored before `formulation`, `transport_background_pressure_factor` and `method` were added,
+// with their defaults (the standard formulation it marched): ExperimentKind::upgraded_params of the kinds with a direct solver.
 json upgraded_sph_solver_params(json solver);
 // The direct model's largest step, kappa·min(dx/c, rho dx²/mu_max) (the particles at rest; it only shrinks as they
 // move); under the transport-velocity formulation kappa·min(h/c, rho h²/(2 mu_max)) (SphEngine::time_step).
@@ -67,7 +82,8 @@ void check_stepped_run(const Scene& scene, const json& resolved_solver, double s
                        const std::string& path);
 // check_stepped_run for the direct SPH: spacing dx, steps of at most direct_step_bound. Refused (ConfigError at
 // `path`/formulation): the transport-velocity formulation on ghost-velocity walls (it has its own wall condition),
-// and the standard one on a scene that needs_transport_velocity.
+// and the standard one on a scene that needs_transport_velocity. Under method linearised_steady (ConfigError at
+// `path`/method): mode steady, the standard formulation and a scene check_linearised_steady takes.
 void check_direct_run(const Scene& scene, const json& resolved_solver, const std::string& path);
 
 }  // namespace closurelab

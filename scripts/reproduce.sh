@@ -99,6 +99,8 @@ experiments/cavity/coarse_continuum_re100.json results/cavity/coarse_continuum_r
 experiments/cavity/reduced_2d_re100.json results/cavity/reduced_2d_re100
 experiments/cylinders/tvf_re1.json results/cylinders/tvf_re1
 experiments/cylinders/tvf_re10.json results/cylinders/tvf_re10
+experiments/cylinders/linearised_steady.json results/cylinders/linearised_steady
+experiments/cylinders/reduced_steady_like_for_like.json results/cylinders/reduced_steady_like_for_like
 LIST
 fi
 

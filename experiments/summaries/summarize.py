@@ -161,8 +161,20 @@ def main(argv):
         print(f"summarize: no such table: {', '.join(missing)} (arguments ending in .json are tables; an output "
               "folder must not end in .json)", file=sys.stderr)
         return 2
-    with open(tables[0]) as f:
-        first = json.load(f)
+    for t in tables:  # a spec, a benchmark's or a peer's output has no rows: say so instead of failing in a view
+        try:
+            with open(t) as f:
+                data = json.load(f)
+        except ValueError as e:
+            print(f"summarize: {t} is not JSON ({e})", file=sys.stderr)
+            return 2
+        if not isinstance(data, dict) or not isinstance(data.get("rows"), list) or "kind" not in data:
+            what = "a spec" if isinstance(data, dict) and "cells" in data else "not a table"
+            print(f"summarize: {t} is {what}: a closurelab table has a kind and rows (closurelab run writes one)",
+                  file=sys.stderr)
+            return 2
+        if t == tables[0]:
+            first = data
     script, contract, target = forced or view_of(first)
     if which:
         print(script)

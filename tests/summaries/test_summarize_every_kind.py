@@ -2,7 +2,8 @@
 """summarize.py works for every kind and reduced model: on one committed table per kind (and per reduced model and
 view) it exits 0 into a temporary folder, prints the paths it wrote, and those are the expected Markdown and figures,
 each a non-empty file; the force-density view's table carries the permeability (cylinder lattice) and % errors.
-Then it exits 0 on every committed table under results/, each alone (the Markdown).
+Then it exits 0 on every committed table under results/, each alone (the Markdown), and 2 on a spec and on a
+JSON file that is no table, saying which.
 snapshot_closure has no committed table: a small one with that kind's row layout
 (experiments/kinds/snapshot_closure.cpp) is written here.
 
@@ -140,6 +141,14 @@ def main():
             runs += 1
             if r.returncode != 0 or "summarize: wrote " not in r.stdout:
                 failures.append(f"{os.path.relpath(path, ROOT)}: exit {r.returncode}: {r.stderr.strip()[-400:]}")
+        # A spec and a JSON file that is no table (a benchmark's output) are refused with exit 2 and what they are.
+        for path, said in (("experiments/cylinders/direct.json", "is a spec"),
+                           ("results/paper/appendix_c/bench_quadrature.json", "is not a table")):
+            r = subprocess.run([sys.executable, SUMMARIZE, "--no-figures", os.path.join(ROOT, path),
+                                os.path.join(tmp, "refused")], capture_output=True, text=True, cwd=ROOT)
+            runs += 1
+            if r.returncode != 2 or said not in r.stderr:
+                failures.append(f"{path}: expected exit 2 and '{said}', got exit {r.returncode}: {r.stderr.strip()}")
     for f in failures:
         print("test_summarize_every_kind: " + f, file=sys.stderr)
     print(f"test_summarize_every_kind: {runs} summaries, {len(failures)} failure(s)"

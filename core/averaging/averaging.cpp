@@ -5,6 +5,9 @@
 #include <omp.h>
 
 #include <cmath>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "core/base/errors.hpp"
 
@@ -24,28 +27,34 @@ TensorMesh2D column_mesh(const PeriodicBox& box, double spacing) {
 
 namespace {
 
-struct Weights {
-  std::vector<std::pair<int, double>> x, y;
-};
+// One axis's window factors of a particle at coordinate q, φ(node − q) summed over the axis's periodic images,
+// remembered by q: the particles of a lattice share n_x x-values and n_y y-values, and a column narrower than the
+// window has many images per particle (r/L_x of them: 32 at n_y = 1536, η' = L/16, twelve columns), so each
+// distinct coordinate is evaluated once. Up to kRemembered coordinates per axis (then evaluated afresh: disordered
+// particles share none); the weights are the same bits either way.
+class AxisWeights {
+ public:
+  AxisWeights(const AveragingKernel& kernel, const UniformMesh1D& axis) : kernel_(kernel), axis_(axis) {}
+  const std::vector<std::pair<int, double>>& at(double q) {
+    if (const auto it = remembered_.find(q); it != remembered_.end()) return it->second;
+    std::vector<std::pair<int, double>>& w = remembered_.size() < kRemembered ? remembered_[q] : scratch_;
+    w.clear();
+    for_nodes_within(axis_, q, kernel_.support_radius(), [&](int i, double d) {
+      const double v = kernel_.factor(d);
+      for (auto& e : w)
+        if (e.first == i) return void(e.second += v);
+      w.emplace_back(i, v);
+    });
+    return w;
+  }
 
-// Separable window weights of one particle: ψ(node − q) = φ(Δx) φ(Δy), summed over images per axis.
-void particle_weights(const AveragingKernel& kernel, const TensorMesh2D& mesh, double qx, double qy, Weights& w) {
-  const double r = kernel.support_radius();
-  w.x.clear();
-  w.y.clear();
-  for_nodes_within(mesh.x, qx, r, [&](int i, double d) {
-    const double v = kernel.factor(d);
-    for (auto& e : w.x)
-      if (e.first == i) return void(e.second += v);
-    w.x.emplace_back(i, v);
-  });
-  for_nodes_within(mesh.y, qy, r, [&](int j, double d) {
-    const double v = kernel.factor(d);
-    for (auto& e : w.y)
-      if (e.first == j) return void(e.second += v);
-    w.y.emplace_back(j, v);
-  });
-}
+ private:
+  static constexpr std::size_t kRemembered = 1 << 14;
+  const AveragingKernel& kernel_;
+  const UniformMesh1D& axis_;
+  std::unordered_map<double, std::vector<std::pair<int, double>>> remembered_;
+  std::vector<std::pair<int, double>> scratch_;
+};
 
 void check_mesh_axis(const UniformMesh1D& a, bool box_periodic, double box_length, const char* name) {
   if (a.periodic != box_periodic || (a.periodic && std::abs(a.period - box_length) > 1e-12 * box_length))
@@ -69,13 +78,15 @@ MesoFields average_particles(const ParticleSystem& ps, const PeriodicBox& box, c
     out.fx = Eigen::VectorXd::Zero(nn);
     out.fy = Eigen::VectorXd::Zero(nn);
   }
-  Weights w;
+  // Separable window weights: ψ(node − q) = φ(Δx) φ(Δy), summed over images per axis.
+  AxisWeights x_weights(kernel, mesh.x), y_weights(kernel, mesh.y);
   for (std::size_t a = 0; a < ps.size(); ++a) {
-    particle_weights(kernel, mesh, ps.x[a], ps.y[a], w);
+    const auto& w_x = x_weights.at(ps.x[a]);
+    const auto& w_y = y_weights.at(ps.y[a]);
     const double m = ps.mass[a];
     const double fext = (req.external && !ps.fixed[a]) ? m * force_x(ps.y[a]) : 0.0;
-    for (const auto& [j, wy] : w.y)
-      for (const auto& [i, wx] : w.x) {
+    for (const auto& [j, wy] : w_y)
+      for (const auto& [i, wx] : w_x) {
         const int n = mesh.index(i, j);
         const double psi = wx * wy;
         out.rho[n] += m * psi;
@@ -90,10 +101,11 @@ MesoFields average_particles(const ParticleSystem& ps, const PeriodicBox& box, c
   if (req.convective) {
     for (const auto& c : req.components) out.convective[c] = Eigen::VectorXd::Zero(nn);
     for (std::size_t a = 0; a < ps.size(); ++a) {
-      particle_weights(kernel, mesh, ps.x[a], ps.y[a], w);
+      const auto& w_x = x_weights.at(ps.x[a]);
+      const auto& w_y = y_weights.at(ps.y[a]);
       const double v[2] = {ps.vx[a], ps.vy[a]};
-      for (const auto& [j, wy] : w.y)
-        for (const auto& [i, wx] : w.x) {
+      for (const auto& [j, wy] : w_y)
+        for (const auto& [i, wx] : w_x) {
           const int n = mesh.index(i, j);
           const double dv[2] = {out.vx[n] - v[0], out.vy[n] - v[1]};
           for (auto& [c, field] : out.convective) {

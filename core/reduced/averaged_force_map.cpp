@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <memory>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "core/base/errors.hpp"
 #include "core/sph/sph_engine.hpp"
@@ -80,13 +82,17 @@ void fluid_rows(const ParticleSystem& ps, double dx, std::vector<std::int32_t>& 
 }
 
 // On the narrowest strip's lattice: the column at x = 0 with the strip's periodic images in x summed (per unit
-// length: the strip's rows are uniform in x), each row sampled at its particles' y.
+// length: the strip's rows are uniform in x), each row sampled at its particles' y. Remembered per x (the strip has
+// few columns and many images per particle when it is narrower than the window): the same bits as evaluated afresh.
 std::function<double(int)> strip_column_weight(const Scene& strip, const ParticleSystem& lattice,
                                                const AveragingKernel& kernel) {
-  return [&strip, &lattice, &kernel](int a) {
+  auto remembered = std::make_shared<std::unordered_map<double, double>>();
+  return [&strip, &lattice, &kernel, remembered](int a) {
+    if (const auto it = remembered->find(lattice.x[a]); it != remembered->end()) return it->second;
     const UniformMesh1D x_axis{0.0, strip.box.lx, 1, true, strip.box.lx};
     double wx = 0.0;
     for_nodes_within(x_axis, lattice.x[a], kernel.support_radius(), [&](int, double d) { wx += kernel.factor(d); });
+    (*remembered)[lattice.x[a]] = wx;
     return wx;
   };
 }

@@ -7,7 +7,8 @@
 // force-density map probed on the narrowest strip, the averaged body force and density). Reduced1D_NearWallSteady:
 // setup and the run to steady state, what a user waits for. Arguments (n_y, m): the lattice's rows and η' = L/m,
 // so the coarse mesh has about m nodes; n_y = 192 … 1536 at m = 16 is the cost against N at fixed N_C, m = 16 … 128
-// at n_y = 1536 against N_C at fixed N.
+// at n_y = 1536 against N_C at fixed N. A third argument 1 puts the closure on Tikhonov's `auto` backend (spectral
+// here, the committed tables' choice) instead of `dual`: the same solution, another factorisation.
 // Run:
 //   OMP_NUM_THREADS=1 build/bench/closurelab_bench --benchmark_filter=Reduced1D
 #include <benchmark/benchmark.h>
@@ -31,7 +32,7 @@ struct Column {
   std::unique_ptr<MesoSolver> solver;
 };
 
-std::unique_ptr<Column> build(int n_y, int m) {
+std::unique_ptr<Column> build(int n_y, int m, bool auto_backend = false) {
   const Registry& reg = builtin_registry();
   auto c = std::make_unique<Column>();
   c->scene = reg.scenes.create(
@@ -43,7 +44,7 @@ std::unique_ptr<Column> build(int n_y, int m) {
       reg.deconvolvers.resolve(json{{"name", "tikhonov"},
                                     {"alpha", 1e-6},
                                     {"regularizer", "first_difference_zero_ends"},
-                                    {"backend", "dual"}},
+                                    {"backend", auto_backend ? "auto" : "dual"}},
                                "/deconvolver"),
       "/deconvolver");
   c->quadrature = reg.quadratures.create(
@@ -70,9 +71,10 @@ void counters(benchmark::State& state, const Column& c) {
 
 void Reduced1D_NearWallSetup(benchmark::State& state) {
   const int n_y = static_cast<int>(state.range(0)), m = static_cast<int>(state.range(1));
+  const bool auto_backend = state.range(2) != 0;
   std::unique_ptr<Column> c;
   for (auto _ : state) {
-    c = build(n_y, m);
+    c = build(n_y, m, auto_backend);
     benchmark::DoNotOptimize(c);
   }
   counters(state, *c);
@@ -80,10 +82,11 @@ void Reduced1D_NearWallSetup(benchmark::State& state) {
 
 void Reduced1D_NearWallSteady(benchmark::State& state) {
   const int n_y = static_cast<int>(state.range(0)), m = static_cast<int>(state.range(1));
+  const bool auto_backend = state.range(2) != 0;
   std::unique_ptr<Column> c;
   long steps = 0;
   for (auto _ : state) {
-    c = build(n_y, m);
+    c = build(n_y, m, auto_backend);
     const MesoResult r = c->solver->run();
     if (r.status != Status::converged) state.SkipWithError("the reduced model did not reach steady state");
     steps = r.steps;
@@ -93,8 +96,9 @@ void Reduced1D_NearWallSteady(benchmark::State& state) {
 }
 
 void cases(benchmark::internal::Benchmark* b) {
-  for (int n_y : {192, 384, 768, 1536}) b->Args({n_y, 16});
-  for (int m : {32, 64, 128}) b->Args({1536, m});
+  for (int n_y : {192, 384, 768, 1536}) b->Args({n_y, 16, 0});
+  for (int m : {32, 64, 128}) b->Args({1536, m, 0});
+  for (int n_y : {192, 1536}) b->Args({n_y, 16, 1});
   b->Unit(benchmark::kMillisecond);
 }
 

@@ -159,6 +159,12 @@ class ReducedModel2D : public ExperimentKind {
                               "data x unknowns of the " + out["closure"]["discretization"].get<std::string>() +
                                   " discretization",
                               false, path);
+      // The zero-end first difference ends its links at a 1D column's walls (difference_regularizers.cpp): the 2D
+      // operators have no such ends, and setup refused it only when the cell ran, after any direct SPH.
+      if (out["closure"]["deconvolver"].value("regularizer", "") == "first_difference_zero_ends")
+        throw ConfigError(path + "/closure/deconvolver/regularizer",
+                          "first_difference_zero_ends ends its links at a column's walls and needs a 1D solution "
+                          "mesh; the 2D model's operator is 2D: use first_difference or identity");
     }
     return out;
   }

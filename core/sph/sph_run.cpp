@@ -71,7 +71,9 @@ SphRunResult linearised_steady_run(const Scene& scene, ParticleSystem& ps, const
   res.active_particles = res.total_particles;
   if (opt.progress)
     opt.progress("direct SPH: linearised steady state, " + std::to_string(r.velocity_unknowns + r.density_unknowns) +
-                 " unknowns, " + std::to_string(r.nonzeros) + " nonzeros, " + std::to_string(r.seconds()) + " s (assembly " + std::to_string(r.assemble_seconds) + ", factor " + std::to_string(r.factor_seconds) + ", solve " + std::to_string(r.solve_seconds) + ")");
+                 " unknowns, " + std::to_string(r.nonzeros) + " nonzeros, " + std::to_string(r.seconds()) +
+                 " s (assembly " + std::to_string(r.assemble_seconds) + ", factor " +
+                 std::to_string(r.factor_seconds) + ", solve " + std::to_string(r.solve_seconds) + ")");
   if (opt.observable && r.converged) opt.observable(ps);
   return res;
 }

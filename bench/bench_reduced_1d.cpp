@@ -8,7 +8,8 @@
 // setup and the run to steady state, what a user waits for. Arguments (n_y, m): the lattice's rows and η' = L/m,
 // so the coarse mesh has about m nodes; n_y = 192 … 1536 at m = 16 is the cost against N at fixed N_C, m = 16 … 128
 // at n_y = 1536 against N_C at fixed N. A third argument 1 puts the closure on Tikhonov's `auto` backend (spectral
-// here, the committed tables' choice) instead of `dual`: the same solution, another factorisation.
+// here, the committed tables' choice) instead of `dual`: the same solution, another factorisation; 2 finds the
+// steady state by the `newton` integrator (one solve of the probed Jacobian) instead of marching by backward Euler.
 // Run:
 //   OMP_NUM_THREADS=1 build/bench/closurelab_bench --benchmark_filter=Reduced1D
 #include <benchmark/benchmark.h>
@@ -32,7 +33,8 @@ struct Column {
   std::unique_ptr<MesoSolver> solver;
 };
 
-std::unique_ptr<Column> build(int n_y, int m, bool auto_backend = false) {
+std::unique_ptr<Column> build(int n_y, int m, int variant = 0) {
+  const bool auto_backend = variant == 1;
   const Registry& reg = builtin_registry();
   auto c = std::make_unique<Column>();
   c->scene = reg.scenes.create(
@@ -50,7 +52,7 @@ std::unique_ptr<Column> build(int n_y, int m, bool auto_backend = false) {
   c->quadrature = reg.quadratures.create(
       reg.quadratures.resolve(json{{"name", "coarse"}, {"stride_x", 0}, {"stride_y", 4}}, "/quadrature"),
       "/quadrature");
-  c->integrator = reg.integrators.create(json{{"name", "backward_euler"}}, "/integrator");
+  c->integrator = reg.integrators.create(json{{"name", variant == 2 ? "newton" : "backward_euler"}}, "/integrator");
   MesoSolverOptions opt;
   opt.scheme = MesoScheme::staggered;
   opt.discretization = Discretization::coarse_fine;
@@ -71,10 +73,10 @@ void counters(benchmark::State& state, const Column& c) {
 
 void Reduced1D_NearWallSetup(benchmark::State& state) {
   const int n_y = static_cast<int>(state.range(0)), m = static_cast<int>(state.range(1));
-  const bool auto_backend = state.range(2) != 0;
+  const int variant = static_cast<int>(state.range(2));
   std::unique_ptr<Column> c;
   for (auto _ : state) {
-    c = build(n_y, m, auto_backend);
+    c = build(n_y, m, variant);
     benchmark::DoNotOptimize(c);
   }
   counters(state, *c);
@@ -82,11 +84,11 @@ void Reduced1D_NearWallSetup(benchmark::State& state) {
 
 void Reduced1D_NearWallSteady(benchmark::State& state) {
   const int n_y = static_cast<int>(state.range(0)), m = static_cast<int>(state.range(1));
-  const bool auto_backend = state.range(2) != 0;
+  const int variant = static_cast<int>(state.range(2));
   std::unique_ptr<Column> c;
   long steps = 0;
   for (auto _ : state) {
-    c = build(n_y, m, auto_backend);
+    c = build(n_y, m, variant);
     const MesoResult r = c->solver->run();
     if (r.status != Status::converged) state.SkipWithError("the reduced model did not reach steady state");
     steps = r.steps;
@@ -99,6 +101,8 @@ void cases(benchmark::internal::Benchmark* b) {
   for (int n_y : {192, 384, 768, 1536}) b->Args({n_y, 16, 0});
   for (int m : {32, 64, 128}) b->Args({1536, m, 0});
   for (int n_y : {192, 1536}) b->Args({n_y, 16, 1});
+  for (int n_y : {192, 384, 768, 1536}) b->Args({n_y, 16, 2});
+  for (int m : {32, 64, 128}) b->Args({1536, m, 2});
   b->Unit(benchmark::kMillisecond);
 }
 

@@ -1,4 +1,5 @@
-// The built-in integrators (integrator.hpp): forward Euler and backward Euler with the Jacobian probed once.
+// The built-in integrators (integrator.hpp): forward Euler, backward Euler with the Jacobian probed once, and Newton
+// for the steady state of an affine rate.
 #include "core/reduced/integrator.hpp"
 
 #include <Eigen/LU>
@@ -17,6 +18,38 @@ void hold_entries(const CoarseRate& f, Eigen::VectorXd& u) {
 namespace {
 
 bool is_held(const CoarseRate& f, Eigen::Index k) { return f.held && (*f.held)[static_cast<std::size_t>(k)]; }
+
+// The rate is affine for a closure with fixed parameters, f(u) = c + J (u − b) over the free entries (held entries at
+// their values). Probed with unit vectors from b (zero, held entries held); a probe at a second point checks the
+// affinity (a parameter rule or an iteration stopped by a tolerance breaks it): false with `issue` empty then.
+bool probe_affine_rate(const CoarseRate& f, Eigen::Index n, Eigen::MatrixXd& jacobian, Eigen::VectorXd& offset,
+                       Eigen::VectorXd& base, std::string& issue) {
+  std::vector<Eigen::Index> free;
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (!is_held(f, k)) free.push_back(k);
+  base = Eigen::VectorXd::Zero(n);
+  hold_entries(f, base);
+  Eigen::VectorXd r0, r;
+  if (!f.at(base, r0, issue)) return false;
+  jacobian = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index k : free) {
+    Eigen::VectorXd u = base;
+    u[k] = 1.0;
+    if (!f.at(u, r, issue)) return false;
+    jacobian.col(k) = r - r0;
+  }
+  Eigen::VectorXd test = base;
+  for (Eigen::Index k : free) test[k] = std::sin(1.0 + 3.7 * static_cast<double>(k));
+  if (!f.at(test, r, issue)) return false;
+  const Eigen::VectorXd predicted = r0 + jacobian * (test - base);
+  const double scale = std::max(r.cwiseAbs().maxCoeff(), 1e-300);
+  if ((predicted - r).cwiseAbs().maxCoeff() > 1e-8 * scale) {
+    issue.clear();
+    return false;
+  }
+  offset = std::move(r0);
+  return true;
+}
 
 class ExplicitEuler : public Integrator {
  public:
@@ -71,36 +104,13 @@ class BackwardEuler : public Integrator {
   }
 
  private:
-  // The rate is affine for a closure with fixed parameters, f(u) = c + J (u − b) over the free entries (held entries
-  // at their values). Probed once with unit vectors from b (zero, held entries held); a probe at a second point
-  // checks the affinity (a parameter rule or an iteration stopped by a tolerance breaks it).
   bool probe(const CoarseRate& f, Eigen::Index n, std::string& issue) {
-    std::vector<Eigen::Index> free;
-    for (Eigen::Index k = 0; k < n; ++k)
-      if (!is_held(f, k)) free.push_back(k);
-    Eigen::VectorXd base = Eigen::VectorXd::Zero(n);
-    hold_entries(f, base);
-    Eigen::VectorXd r0, r;
-    if (!f.at(base, r0, issue)) return false;
-    Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(n, n);
-    for (Eigen::Index k : free) {
-      Eigen::VectorXd u = base;
-      u[k] = 1.0;
-      if (!f.at(u, r, issue)) return false;
-      jacobian.col(k) = r - r0;
-    }
-    Eigen::VectorXd test = base;
-    for (Eigen::Index k : free) test[k] = std::sin(1.0 + 3.7 * static_cast<double>(k));
-    if (!f.at(test, r, issue)) return false;
-    const Eigen::VectorXd predicted = r0 + jacobian * (test - base);
-    const double scale = std::max(r.cwiseAbs().maxCoeff(), 1e-300);
-    if ((predicted - r).cwiseAbs().maxCoeff() > 1e-8 * scale) {
-      issue = "backward Euler needs a closure linear in the coarse velocity (fixed parameters); this one is not";
+    if (!probe_affine_rate(f, n, jacobian_, rate_offset_, base_, issue)) {
+      jacobian_.resize(0, 0);
+      if (issue.empty())
+        issue = "backward Euler needs a closure linear in the coarse velocity (fixed parameters); this one is not";
       return false;
     }
-    jacobian_ = std::move(jacobian);
-    rate_offset_ = std::move(r0);
-    base_ = std::move(base);
     lu_dt_ = std::numeric_limits<double>::quiet_NaN();
     return true;
   }
@@ -113,6 +123,63 @@ class BackwardEuler : public Integrator {
   Eigen::VectorXd offset_;                   // c − J b
 };
 
+// The steady state of an affine rate, f(u*) = 0 over the free entries, by Newton's method on the probed Jacobian:
+// exact in one step for an affine f, then refined while the residual falls (round-off). No time step is taken.
+class SteadyNewton : public Integrator {
+ public:
+  bool needs_affine_rate() const override { return true; }
+  bool finds_steady_state() const override { return true; }
+  bool step(const CoarseRate&, double, Eigen::VectorXd&, std::string& issue) override {
+    issue = "newton finds the steady state and takes no time step (steady_state)";
+    return false;
+  }
+  bool steady_state(const CoarseRate& f, Eigen::VectorXd& u, SteadySolveRecord& record, std::string& issue) override {
+    const Eigen::Index n = u.size();
+    Eigen::MatrixXd jacobian;
+    Eigen::VectorXd offset, base;
+    if (!probe_affine_rate(f, n, jacobian, offset, base, issue)) {
+      if (issue.empty())
+        issue = "newton needs a closure linear in the coarse velocity (fixed parameters); this one is not";
+      return false;
+    }
+    record.rate_evaluations = n + 2;
+    Eigen::MatrixXd m = jacobian;
+    for (Eigen::Index k = 0; k < n; ++k)
+      if (is_held(f, k)) {
+        m.row(k).setZero();
+        m(k, k) = 1.0;
+      }
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(m);
+    u = base;
+    hold_entries(f, u);
+    Eigen::VectorXd r = offset;  // f(b)
+    double scale = 0.0;
+    for (record.iterations = 0; record.iterations < 5; ++record.iterations) {
+      Eigen::VectorXd rhs = -r;
+      for (Eigen::Index k = 0; k < n; ++k)
+        if (is_held(f, k)) rhs[k] = 0.0;
+      u += lu.solve(rhs);
+      hold_entries(f, u);
+      if (!f.at(u, r, issue)) return false;
+      ++record.rate_evaluations;
+      for (Eigen::Index k = 0; k < n; ++k)
+        if (is_held(f, k)) r[k] = 0.0;
+      const double residual = r.cwiseAbs().maxCoeff();
+      if (record.iterations == 0) scale = std::max(jacobian.cwiseAbs().maxCoeff() * u.cwiseAbs().maxCoeff(), 1e-300);
+      const double previous = record.iterations == 0 ? std::numeric_limits<double>::infinity() : record.residual;
+      record.residual = residual / scale;
+      if (!(record.residual < 0.5 * previous) && record.iterations > 0) break;  // round-off reached
+    }
+    ++record.iterations;
+    if (!u.allFinite() || !(record.residual <= 1e-10)) {
+      issue = "newton's steady state has a rate residual of " + std::to_string(record.residual) +
+              " of |J| |u| (a singular or ill-conditioned steady system)";
+      return false;
+    }
+    return true;
+  }
+};
+
 }  // namespace
 
 void register_integrators(Registry& r) {
@@ -123,6 +190,13 @@ void register_integrators(Registry& r) {
                      "parameters; a parameter rule is served by the two-pass rule), whose Jacobian is probed once",
                      {}},
                     [](const json&) { return std::make_unique<BackwardEuler>(); });
+  r.integrators.add({"newton",
+                     "the steady state itself, no time step (mode steady, the column model): Newton's method on the "
+                     "rate's Jacobian probed with unit vectors, exact in one step for a closure linear in the coarse "
+                     "velocity (fixed parameters; a parameter rule is served by the two-pass rule), the residual "
+                     "checked to 1e-10 of |J| |u|",
+                     {}},
+                    [](const json&) { return std::make_unique<SteadyNewton>(); });
   register_arkode_integrators(r);
 }
 

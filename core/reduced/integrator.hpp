@@ -7,6 +7,9 @@
 //   backward_euler  implicit in the whole rate, for a rate affine in u (a closure with fixed parameters): the
 //                   Jacobian probed once with unit vectors and checked for affinity at a second point, then
 //                   (I − dt J) u' = u + dt (f(b) − J b) over the free entries, b the probe's base.
+//   newton          no step: the steady state f(u*) = 0 itself, for a rate affine in u (the Jacobian probed as
+//                   backward Euler probes it, one solve, refined while the residual falls); a model in mode steady
+//                   calls steady_state() instead of its time loop (the column model; the 2D models refuse it);
 //   arkode_erk      SUNDIALS ARKODE ERKStep (integrator_arkode.cpp): u integrated from t to t + dt by an embedded
 //                   explicit Runge–Kutta pair with local error control (rtol, atol; internal steps as needed, a stop
 //                   time at t + dt), or method forward_euler: one stage at the fixed step dt (the explicit step
@@ -43,6 +46,13 @@ struct CoarseRate {
   std::function<bool(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue)> nonstiff{};
 };
 
+// What a steady solve (Integrator::steady_state) did.
+struct SteadySolveRecord {
+  int iterations = 0;         // Newton steps
+  long rate_evaluations = 0;  // the Jacobian's probes included
+  double residual = 0.0;      // max |f(u*)| over the free entries / (max|J| max|u*|)
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
@@ -53,6 +63,13 @@ class Integrator {
   virtual bool needs_affine_rate() const { return false; }
   // The model's rate or held entries changed (e.g. oracles switched on): forget what was learned of them.
   virtual void reset() {}
+  // Whether it finds the steady state itself (steady_state) rather than stepping: a model in mode steady then calls
+  // steady_state instead of its time loop.
+  virtual bool finds_steady_state() const { return false; }
+  virtual bool steady_state(const CoarseRate&, Eigen::VectorXd&, SteadySolveRecord&, std::string& issue) {
+    issue = "this integrator steps; it does not find the steady state itself";
+    return false;
+  }
 };
 
 // The held entries of u set to their values.

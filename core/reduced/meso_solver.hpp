@@ -207,6 +207,9 @@ class MesoSolver {
   double time_step() const;
 
  private:
+  // run() under an integrator that finds the steady state itself (newton): one call of it, no time loop.
+  MesoResult steady_state();
+  MesoResult finished(MesoResult res);  // the result's fields, costs and record from the solver's state
   bool deconvolve(std::string& issue);    // v̄ → reconstruction_
   bool close_stress(std::string& issue);  // deconvolve + quadrature → t_
   bool rate(Eigen::VectorXd& dvdt, std::string& issue);  // ∂_t v̄ at the current v̄

@@ -112,6 +112,10 @@ class ReducedModel2D : public ExperimentKind {
       const auto integrator = make_integrator(reg, out["solver"], path);
       check_implicit_closure(out["solver"], *integrator, out["closure"]["deconvolver"], path);
       const json& s = out["solver"];
+      if (integrator->finds_steady_state())
+        throw ConfigError(path + "/solver/time_integration",
+                          integrator_name(s) + " finds a steady state without stepping; the 2D stepped model marches "
+                                               "(transients): use a stepping integrator");
       // The two-pass rule chooses a parameter from a steady state (core/reduced/closure_rule.hpp); the stepped 2D
       // model's runs are transients, so it runs none, and a rule under an integrator that probes the rate's
       // Jacobian once would be applied at every solve of a closure taken as linear.

@@ -207,7 +207,10 @@ class MesoSolver {
   double time_step() const;
 
  private:
-  // run() under an integrator that finds the steady state itself (newton): one call of it, no time loop.
+  // The rate the integrator advances (the current v̄ set from u), the held nodes with it.
+  CoarseRate coarse_rate();
+  // run() under an integrator that finds the steady state itself (newton): one call of it, no time loop
+  // (meso_stepping.cpp).
   MesoResult steady_state();
   MesoResult finished(MesoResult res);  // the result's fields, costs and record from the solver's state
   bool deconvolve(std::string& issue);    // v̄ → reconstruction_

@@ -84,6 +84,10 @@ std::unique_ptr<Integrator> make_integrator(const Registry& registry, const json
 
 void check_implicit_closure(const json& solver, const Integrator& integrator, const json& deconvolver,
                             const std::string& path) {
+  if (integrator.finds_steady_state() && solver.value("mode", "") != "steady")
+    throw ConfigError(path + "/solver/time_integration",
+                      integrator_name(solver) + " finds the steady state and takes no time step: set mode to steady, "
+                                                "or use a stepping integrator");
   if (!integrator.needs_affine_rate()) return;
   // An integrator for an affine rate (backward Euler's Jacobian, probed once) is right only when the closure is
   // linear in v̄. A parameter rule is served by the two-pass rule (core/reduced/closure_rule.hpp: the parameter

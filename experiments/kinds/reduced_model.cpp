@@ -80,14 +80,7 @@ class ReducedModel : public ExperimentKind {
     out["solver"]["time_integration"] =
         resolve_time_integration(reg, out["solver"]["time_integration"], path + "/solver/time_integration");
     check_time_loop(out["solver"], path + "/solver");
-    {
-      const auto integrator = make_integrator(reg, out["solver"], path);
-      check_implicit_closure(out["solver"], *integrator, out["closure"]["deconvolver"], path);
-      if (integrator->finds_steady_state() && out["solver"].at("mode").get<std::string>() != "steady")
-        throw ConfigError(path + "/solver/time_integration",
-                          integrator_name(out["solver"]) + " finds the steady state and takes no time step: "
-                                                           "set mode to steady, or use a stepping integrator");
-    }
+    check_implicit_closure(out["solver"], *make_integrator(reg, out["solver"], path), out["closure"]["deconvolver"], path);
     out["reference"] = resolve_section(cell, "reference", reference_with_file_schema(), path);
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});

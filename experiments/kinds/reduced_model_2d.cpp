@@ -110,12 +110,12 @@ class ReducedModel2D : public ExperimentKind {
         resolve_time_integration(reg, out["solver"]["time_integration"], path + "/solver/time_integration");
     {  // the integrator: registered, and able to serve the closure and the equations
       const auto integrator = make_integrator(reg, out["solver"], path);
-      check_implicit_closure(out["solver"], *integrator, out["closure"]["deconvolver"], path);
       const json& s = out["solver"];
-      if (integrator->finds_steady_state())
+      if (integrator->finds_steady_state())  // before check_implicit_closure, whose advice (mode steady) is the column's
         throw ConfigError(path + "/solver/time_integration",
                           integrator_name(s) + " finds a steady state without stepping; the 2D stepped model marches "
                                                "(transients): use a stepping integrator");
+      check_implicit_closure(out["solver"], *integrator, out["closure"]["deconvolver"], path);
       // The two-pass rule chooses a parameter from a steady state (core/reduced/closure_rule.hpp); the stepped 2D
       // model's runs are transients, so it runs none, and a rule under an integrator that probes the rate's
       // Jacobian once would be applied at every solve of a closure taken as linear.
@@ -163,12 +163,7 @@ class ReducedModel2D : public ExperimentKind {
                               "data x unknowns of the " + out["closure"]["discretization"].get<std::string>() +
                                   " discretization",
                               false, path);
-      // The zero-end first difference ends its links at a 1D column's walls (difference_regularizers.cpp): the 2D
-      // operators have no such ends, and setup refused it only when the cell ran, after any direct SPH.
-      if (out["closure"]["deconvolver"].value("regularizer", "") == "first_difference_zero_ends")
-        throw ConfigError(path + "/closure/deconvolver/regularizer",
-                          "first_difference_zero_ends ends its links at a column's walls and needs a 1D solution "
-                          "mesh; the 2D model's operator is 2D: use first_difference or identity");
+      check_prior_on_2d_operator(out["closure"]["deconvolver"], path);
     }
     return out;
   }

@@ -30,6 +30,13 @@ void check_operator_shape(const json& closure, long rows, long cols, const std::
                         " x " + std::to_string(cols) + " (data x unknowns), not square: " + needs);
 }
 
+void check_prior_on_2d_operator(const json& d, const std::string& path) {
+  if (d.value("regularizer", "") == "first_difference_zero_ends")
+    throw ConfigError(path + "/closure/deconvolver/regularizer",
+                      "first_difference_zero_ends ends its links at a column's walls and needs a 1D solution mesh; "
+                      "the 2D model's operator is 2D: use first_difference or identity");
+}
+
 void check_truncation_rank(const json& resolved_deconvolver, long rows, long cols, const std::string& shape,
                            bool under_rule, const std::string& path) {
   const json& d = resolved_deconvolver;

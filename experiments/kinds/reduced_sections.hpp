@@ -63,6 +63,11 @@ void check_operator_shape(const json& closure, long rows, long cols, const std::
 void check_truncation_rank(const json& resolved_deconvolver, long rows, long cols, const std::string& shape,
                            bool under_rule, const std::string& path);
 
+// The zero-end first difference ends its links at a 1D column's walls (strategies/deconvolution/
+// difference_regularizers.cpp); on the 2D stepped model's Kronecker operator it is a ConfigError at
+// `path`/closure/deconvolver/regularizer at validation (setup refused it only when the cell ran, after any direct SPH).
+void check_prior_on_2d_operator(const json& resolved_deconvolver, const std::string& path);
+
 // "timing": how the reduced run is repeated (core/base/repeated_timing.hpp).
 ParamSchema reduced_timing_schema();
 

@@ -42,13 +42,12 @@ std::unique_ptr<Column> build(int n_y, int m, int variant = 0) {
                          "/scene"),
       "/scene");
   c->kernel = reg.kernels.create(json{{"name", "gaussian"}, {"eta", c->scene->eta}}, "/kernel");
-  c->deconvolver = reg.deconvolvers.create(
-      reg.deconvolvers.resolve(json{{"name", "tikhonov"},
-                                    {"alpha", 1e-6},
-                                    {"regularizer", "first_difference_zero_ends"},
-                                    {"backend", auto_backend ? "auto" : "dual"}},
-                               "/deconvolver"),
-      "/deconvolver");
+  c->deconvolver = reg.deconvolvers.create(reg.deconvolvers.resolve(json{{"name", "tikhonov"},
+                                                                         {"alpha", 1e-6},
+                                                                         {"regularizer", "first_difference_zero_ends"},
+                                                                         {"backend", auto_backend ? "auto" : "dual"}},
+                                                                    "/deconvolver"),
+                                           "/deconvolver");
   c->quadrature = reg.quadratures.create(
       reg.quadratures.resolve(json{{"name", "coarse"}, {"stride_x", 0}, {"stride_y", 4}}, "/quadrature"),
       "/quadrature");
@@ -61,8 +60,7 @@ std::unique_ptr<Column> build(int n_y, int m, int variant = 0) {
   opt.wall_constraint_forces = true;
   opt.to_steady_state = true;
   opt.max_time = 20.0;
-  c->solver = std::make_unique<MesoSolver>(*c->scene, *c->kernel, *c->deconvolver, *c->quadrature, *c->integrator,
-                                           opt);
+  c->solver = std::make_unique<MesoSolver>(*c->scene, *c->kernel, *c->deconvolver, *c->quadrature, *c->integrator, opt);
   return c;
 }
 

@@ -115,12 +115,12 @@ class BackwardEuler : public Integrator {
     return true;
   }
 
-  Eigen::MatrixXd jacobian_;              // ∂f/∂u over the free entries
-  Eigen::VectorXd rate_offset_, base_;    // f(b) and b
+  Eigen::MatrixXd jacobian_;                 // ∂f/∂u over the free entries
+  Eigen::VectorXd rate_offset_, base_;       // f(b) and b
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  // of I − dt J (held rows the identity) at dt = lu_dt_
   double lu_dt_ = std::numeric_limits<double>::quiet_NaN();
-  std::vector<bool> lu_held_;                // the held entries it was factored with
-  Eigen::VectorXd offset_;                   // c − J b
+  std::vector<bool> lu_held_;  // the held entries it was factored with
+  Eigen::VectorXd offset_;     // c − J b
 };
 
 // The steady state of an affine rate, f(u*) = 0 over the free entries, by Newton's method on the probed Jacobian:
@@ -183,8 +183,9 @@ class SteadyNewton : public Integrator {
 }  // namespace
 
 void register_integrators(Registry& r) {
-  r.integrators.add({"explicit", "forward Euler, the paper's (5.11)-(5.14): u += dt f(u), then the held nodes reset", {}},
-                    [](const json&) { return std::make_unique<ExplicitEuler>(); });
+  r.integrators.add(
+      {"explicit", "forward Euler, the paper's (5.11)-(5.14): u += dt f(u), then the held nodes reset", {}},
+      [](const json&) { return std::make_unique<ExplicitEuler>(); });
   r.integrators.add({"backward_euler",
                      "backward Euler, implicit in the whole rate: needs a closure linear in the coarse velocity (fixed "
                      "parameters; a parameter rule is served by the two-pass rule), whose Jacobian is probed once",

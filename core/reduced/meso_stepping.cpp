@@ -30,7 +30,8 @@ bool MesoSolver::step(double dt, std::string& issue) {
 MesoResult MesoSolver::steady_state() {
   // The integrator finds the steady state itself (newton): no time step, no loop; the record's residual stands in
   // for the loop's last relative change.
-  if (!opt_.to_steady_state) throw ConfigError("/solver/time_integration", "newton finds the steady state: mode steady");
+  if (!opt_.to_steady_state)
+    throw ConfigError("/solver/time_integration", "newton finds the steady state: mode steady");
   const auto t0 = std::chrono::steady_clock::now();
   const std::clock_t cpu0 = std::clock();
   const CoarseRate f = coarse_rate();

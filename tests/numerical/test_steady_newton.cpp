@@ -16,23 +16,24 @@ using closurelab::test_support::config_error;
 namespace {
 
 json near_wall_cell(const std::string& integrator, const std::string& mode = "steady") {
-  return {{"scene", {{"name", "poiseuille-uniform"}, {"n_y", 48}, {"n_x", 12}, {"eta_over_ly", 0.0625}}},
-          {"closure",
-           {{"deconvolver",
-             {{"name", "tikhonov"}, {"alpha", 1e-6}, {"regularizer", "first_difference_zero_ends"}, {"backend", "dual"}}},
-            {"discretization", "coarse_fine"}}},
-          {"quadrature", {{"name", "coarse"}, {"stride_x", 0}, {"stride_y", 4}}},
-          {"solver",
-           {{"mode", mode},
-            {"target_time", 0.1},
-            {"scheme", "staggered"},
-            {"wall_constraint_forces", true},
-            {"balance", "force_density"},
-            {"wall_node_value", "reconstructed"},
-            {"time_integration", integrator},
-            {"steady_tolerance", 1e-10},
-            {"max_time", 50.0}}},
-          {"reference", {{"direct_sph", false}}}};
+  return {
+      {"scene", {{"name", "poiseuille-uniform"}, {"n_y", 48}, {"n_x", 12}, {"eta_over_ly", 0.0625}}},
+      {"closure",
+       {{"deconvolver",
+         {{"name", "tikhonov"}, {"alpha", 1e-6}, {"regularizer", "first_difference_zero_ends"}, {"backend", "dual"}}},
+        {"discretization", "coarse_fine"}}},
+      {"quadrature", {{"name", "coarse"}, {"stride_x", 0}, {"stride_y", 4}}},
+      {"solver",
+       {{"mode", mode},
+        {"target_time", 0.1},
+        {"scheme", "staggered"},
+        {"wall_constraint_forces", true},
+        {"balance", "force_density"},
+        {"wall_node_value", "reconstructed"},
+        {"time_integration", integrator},
+        {"steady_tolerance", 1e-10},
+        {"max_time", 50.0}}},
+      {"reference", {{"direct_sph", false}}}};
 }
 
 json run(const json& cell) {

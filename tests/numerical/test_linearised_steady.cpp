@@ -46,7 +46,7 @@ TEST(LinearisedSteady, SolutionZeroesTheEnginesForcesAndDensityRate) {
   ASSERT_TRUE(r.converged) << r.message;
   std::cout << r.velocity_unknowns << " velocity and " << r.density_unknowns << " density unknowns, " << r.nonzeros
             << " nonzeros, " << r.refinements << " refinements, residual " << r.relative_residual << "\n";
-  EXPECT_LT(r.relative_residual, 1e-10);
+  EXPECT_LT(r.relative_residual, 1e-12);  // the refinement's target (converged only asks 1e-10); measured 8e-14
   // Momentum: the engine's acceleration at V (viscous (5.1) and g) plus the linearised pressure force of δn.
   SphEngine engine(*scene, ps);
   engine.compute_accelerations();

@@ -46,13 +46,74 @@ ForceDensitySolver2D::Interp ForceDensitySolver2D::bilinear_weights(const Tensor
           {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty}};
 }
 
+namespace {
+
+// What the transport-velocity pair forces need beyond the lattice stencil (the header's formulation): each solid
+// site's Shepard weights W_wf / Σ_f W_wf over its fluid neighbours (SetWallVelocity, SolidWallPressureBC; none where
+// Σ_f W_wf is at most 1e-12, as the engine) and its hydrostatic pressure g(x_w) · Σ_f ρ_f (x_w − x_f) W_wf / Σ_f W_wf
+// at rest, the volumes V² of a fluid (1/n0²) and a wall particle (ε'⁴), η / μ = ρ_rest / ρ0, ε = 0.01 h², and the
+// rest pressure's share 2 P0 / n0³ of the pressure coefficient.
+struct TransportLinearisation {
+  std::vector<std::vector<std::pair<int, double>>> shepard;
+  std::vector<double> hydrostatic;
+  double vol2_fluid = 0.0, vol2_wall = 0.0, eta_per_mu = 0.0, eps = 0.0, rest_volume_term = 0.0;
+};
+
+TransportLinearisation transport_linearisation(const Scene& scene, const ParticleSystem& lattice,
+                                               const std::vector<int>& site, const std::vector<LatticeOffset>& stencil,
+                                               double n0, double p0) {
+  TransportLinearisation t;
+  const SmoothingKernel w = scene.smoothing_kernel();
+  const double m = scene.particle_mass(), rho_rest = m * n0, dx = scene.dx;
+  t.vol2_fluid = 1.0 / (n0 * n0);
+  t.vol2_wall = dx * dx * dx * dx;  // PySPH: solid.V = 1/dx², never updated
+  t.eta_per_mu = rho_rest / scene.rho0;
+  t.eps = 0.01 * w.h() * w.h();
+  t.rest_volume_term = 2.0 * p0 / (n0 * n0 * n0);
+  const std::size_t np = lattice.size();
+  t.shepard.resize(np);
+  t.hydrostatic.assign(np, 0.0);
+  const int lnx = scene.nx, lny = scene.ny;
+  for (int j = 0; j < lny; ++j)
+    for (int i = 0; i < lnx; ++i) {
+      const auto a = static_cast<std::size_t>(site[static_cast<std::size_t>(j * lnx + i)]);
+      if (!lattice.fixed[a]) continue;
+      double sum_w = 0.0, rx = 0.0, ry = 0.0;
+      std::vector<std::pair<int, double>>& out = t.shepard[a];
+      for (const LatticeOffset& o : stencil) {
+        if (!scene.box.periodic_y && (j + o.dj < 0 || j + o.dj >= lny)) continue;
+        const long bi = ((i + o.di) % lnx + lnx) % lnx, bj = ((j + o.dj) % lny + lny) % lny;
+        const int f = site[static_cast<std::size_t>(bj * lnx + bi)];
+        if (lattice.fixed[static_cast<std::size_t>(f)]) continue;
+        const double wf = w.w(std::hypot(o.qx, o.qy));
+        if (wf == 0.0) continue;
+        sum_w += wf;
+        rx += rho_rest * o.qx * wf;  // q = x_w − x_f
+        ry += rho_rest * o.qy * wf;
+        out.emplace_back(f, wf);
+      }
+      if (sum_w <= 1e-12) {
+        out.clear();
+        continue;
+      }
+      for (auto& e : out) e.second /= sum_w;
+      const Vec2 g = scene.body_force ? scene.body_force(lattice.x[a], lattice.y[a])
+                                      : Vec2(scene.force_x ? scene.force_x(lattice.y[a]) : 0.0, 0.0);
+      t.hydrostatic[a] = (g.x() * rx + g.y() * ry) / sum_w;
+    }
+  return t;
+}
+
+}  // namespace
+
 ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKernel& kernel, Deconvolver& velocity,
                                            Deconvolver& density, ForceDensity2DOptions options)
     : scene_(scene), velocity_(velocity), density_(density), opt_(std::move(options)) {
   const auto t0 = std::chrono::steady_clock::now();
   check_force_density_2d(scene, kernel, opt_);
   coarse_ = force_density_coarse_mesh(scene, kernel, opt_.spacing_over_eta);
-  recon_ = force_density_reconstruction_mesh(scene, coarse_, opt_.reconstruction_refinement, opt_.reconstruction_y_nodes);
+  recon_ =
+      force_density_reconstruction_mesh(scene, coarse_, opt_.reconstruction_refinement, opt_.reconstruction_y_nodes);
   const ParticleSystem lattice = scene.make_particles();
   const std::size_t np = lattice.size();
   const int lnx = scene.nx, lny = scene.ny;
@@ -78,6 +139,9 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
   const double p0 = scene.pressure(n0, m), dn = 1e-6 * n0;
   const double dp_dn = (scene.pressure(n0 + dn, m) - scene.pressure(n0 - dn, m)) / (2.0 * dn);
   const double beta = dp_dn / (n0 * n0) - 2.0 * p0 / (n0 * n0 * n0);
+  const bool transport = opt_.pair_forces == SphFormulation::transport_velocity;
+  const TransportLinearisation tvf =
+      transport ? transport_linearisation(scene, lattice, site, stencil, n0, p0) : TransportLinearisation{};
   const Eigen::Index nc = coarse_.size(), nr = recon_.size();
   const int ncx = coarse_.nx(), nrx = recon_.nx(), nry = recon_.ny();
   Eigen::VectorXd rho_bar = Eigen::VectorXd::Zero(nc), fluid_mass = Eigen::VectorXd::Zero(nc),
@@ -98,8 +162,10 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
     for (int u = 0; u < 4; ++u) rows[k].add(interp_[b].node[u], c * interp_[b].weight[u]);
   };
   std::vector<std::vector<std::pair<int, double>>> wx_of_column(static_cast<std::size_t>(lnx));
-  for (int i = 0; i < lnx; ++i) wx_of_column[static_cast<std::size_t>(i)] = axis_window(kernel, coarse_.x, (i + 0.5) * dx, opt_.window_cutoff);
-  constexpr int max_slots = 16;  // reconstruction rows one lattice row's particle rows touch
+  for (int i = 0; i < lnx; ++i)
+    wx_of_column[static_cast<std::size_t>(i)] = axis_window(kernel, coarse_.x, (i + 0.5) * dx, opt_.window_cutoff);
+  // Reconstruction rows one lattice row's particle rows touch (the transport-velocity walls reach two supports).
+  const int max_slots = transport ? 32 : 16;
   std::vector<int> slot_of(static_cast<std::size_t>(nry), -1), slot_row;
   std::array<std::vector<double>, map_count> block;
   for (auto& v : block) v.assign(static_cast<std::size_t>(ncx) * max_slots * nrx, 0.0);
@@ -112,12 +178,41 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
       const double mu_a = scene.phase_viscosity.at(static_cast<std::size_t>(lattice.phase[a]));
       // Particle a's own coefficients, summed over its pairs before they are interpolated once.
       double own_visc = 0.0, own_px = 0.0, own_py = 0.0, own_cx = 0.0, own_cy = 0.0;
+      Vec2 affine(0.0, 0.0);  // the transport-velocity walls' force at rest
       for (const LatticeOffset& o : stencil) {
         if (!scene.box.periodic_y && (j + o.dj < 0 || j + o.dj >= lny)) continue;  // beyond a wall's outer face
         const long bi = ((i + o.di) % lnx + lnx) % lnx, bj = ((j + o.dj) % lny + lny) % lny;
         const auto b = static_cast<std::size_t>(site[static_cast<std::size_t>(bj * lnx + bi)]);
         const bool b_fluid = !fixed_[b];
-        if (fluid) {  // the force on a fluid particle: viscous (V_a − V_b), pressure (δn_a + δn_b)
+        if (fluid && transport) {  // the transport-velocity pair (header): the wall's ghost velocity and pressure
+          const double mu_b = scene.phase_viscosity.at(static_cast<std::size_t>(lattice.phase[b]));
+          const double eta_sum = mu_a + mu_b, r2 = o.qx * o.qx + o.qy * o.qy;
+          const double vol = tvf.vol2_fluid + (b_fluid ? tvf.vol2_fluid : tvf.vol2_wall);
+          // η = ν ρ_rest for both (ν = μ / ρ0): η_ab = 2 η_a η_b / (η_a + η_b).
+          const double c =
+              eta_sum > 0.0 ? vol * (2.0 * mu_a * mu_b / eta_sum) * tvf.eta_per_mu * o.F * r2 / (r2 + tvf.eps) : 0.0;
+          own_visc += c;
+          const double bp = 0.5 * dp_dn * vol - tvf.rest_volume_term;  // δn_a's pressure coefficient, β for a fluid b
+          own_px -= bp * o.F * o.qx;
+          own_py -= bp * o.F * o.qy;
+          if (b_fluid) {
+            add_interp(visc, b, -c);
+            add_interp(press_x, b, -bp * o.F * o.qx);
+            add_interp(press_y, b, -bp * o.F * o.qy);
+          } else {
+            const double gamma = 0.5 * vol;  // ∂p̄/∂p_w (V_a² + V_w²) at rest
+            for (const auto& [f, w] : tvf.shepard[b]) {
+              add_interp(visc, static_cast<std::size_t>(f), c * w);  // −c v_g, v_g = −Σ_f w V_f
+              add_interp(press_x, static_cast<std::size_t>(f), -gamma * dp_dn * w * o.F * o.qx);
+              add_interp(press_y, static_cast<std::size_t>(f), -gamma * dp_dn * w * o.F * o.qy);
+            }
+            // The wall's hydrostatic pressure, and the rest pressure where V_w² differs from 1/n0².
+            const double at_rest = gamma * tvf.hydrostatic[b] + p0 * (tvf.vol2_wall - tvf.vol2_fluid);
+            affine -= at_rest * o.F * Vec2(o.qx, o.qy);
+          }
+          own_cx += o.F * o.qx;
+          own_cy += o.F * o.qy;
+        } else if (fluid) {  // the force on a fluid particle: viscous (V_a − V_b), pressure (δn_a + δn_b)
           const double mu_ab = pair_viscosity(
               mu_a, scene.phase_viscosity.at(static_cast<std::size_t>(lattice.phase[b])), scene.pair_viscosity_mean);
           const double c = mu_ab * o.F / (n0 * n0);
@@ -169,6 +264,10 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
             fluid_mass[n] += m * psi;
             body_x_[n] += m * psi * g.x();
             body_y_[n] += m * psi * g.y();
+            if (transport) {
+              body_x_[n] += psi * affine.x();
+              body_y_[n] += psi * affine.y();
+            }
           }
         }
     }
@@ -224,12 +323,14 @@ ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKe
   // ends' viscosity over the largest, as the 1D model's), its links into the solid to the known zero; the density's
   // links unweighted, every node an unknown.
   std::vector<int> unknown_of(static_cast<std::size_t>(nr), -1);
-  for (std::size_t c = 0; c < velocity_columns_.size(); ++c) unknown_of[static_cast<std::size_t>(velocity_columns_[c])] = static_cast<int>(c);
+  for (std::size_t c = 0; c < velocity_columns_.size(); ++c)
+    unknown_of[static_cast<std::size_t>(velocity_columns_[c])] = static_cast<int>(c);
   const double mu_max = scene.max_viscosity();
-  op_v_.difference_links = link_differences(recon_, unknown_of, static_cast<int>(velocity_columns_.size()), [&](int p, int q) {
-    const double a = scene.viscosity_at(recon_.node(p)), b = scene.viscosity_at(recon_.node(q));
-    return 2.0 * a * b / (a + b) / mu_max;
-  });
+  op_v_.difference_links =
+      link_differences(recon_, unknown_of, static_cast<int>(velocity_columns_.size()), [&](int p, int q) {
+        const double a = scene.viscosity_at(recon_.node(p)), b = scene.viscosity_at(recon_.node(q));
+        return 2.0 * a * b / (a + b) / mu_max;
+      });
   for (Eigen::Index r = 0; r < nr; ++r) unknown_of[static_cast<std::size_t>(r)] = static_cast<int>(r);
   op_n_.difference_links = link_differences(recon_, unknown_of, static_cast<int>(nr), [](int, int) { return 1.0; });
   full_v_ = std::move(maps[op_v]);

@@ -18,6 +18,15 @@
 // with V_a the reconstructed particle velocities at the lattice sites: quadratic in the state, so the steady state
 // is reached by Newton's method from the Stokes solution (the Jacobian exact: the closure is linear). The density's
 // transport Σ δn_a V_a · ∇_q ψ stays out (δn V against n0 ∇·V: δn/n0 ≤ 4e-2 at the cylinder scene's Re ~ 1).
+// The pair forces may instead be those of the transport-velocity formulation (solver.pair_forces: transport_velocity;
+// core/sph/transport_velocity.hpp), for a reference computed under it, linearised about the same lattice at rest:
+//   f_a = Σ_b (V_a² + V_b²) [η_ab F r²/(r² + ε) (V_a − V_b) − p̄_ab F q_ab],   V² = 1/n², ε = 0.01 h²,
+// with p̄_ab's linear part ½(δp_a + δp_b), which for two fluid particles is the standard β term above. A solid
+// particle w carries the generalized wall condition: the ghost velocity −Σ_f W_wf V_f / Σ_f W_wf, the pressure
+// Σ_f (p_f + ρ_f g · (x_w − x_f)) W_wf / Σ_f W_wf and V_w² = ε'⁴ (its own δn does not enter the forces). The
+// hydrostatic part and the rest pressure's force where V_w² ≠ 1/n0² are affine, added to the body force. The
+// formulation's own extra stress ρ V (Ṽ − V) and its background pressure move the particles off the lattice and
+// vanish on it: left out, as the particles' departure from their sites is.
 // Always left out: the background pressure's force on the displaced lattice (−2P0/n0² δ(F q), which grows with the
 // displacement, not with δn: 2P0/(c² ρ0) = 0.4 % of the pressure response at the cylinder scene's P0 = 0.002 ρ0 c²).
 //
@@ -47,6 +56,7 @@
 #include "core/closure/forward_operator.hpp"
 #include "core/reduced/meso_solver.hpp"
 #include "core/sph/scene.hpp"
+#include "core/sph/transport_velocity.hpp"
 
 namespace closurelab {
 
@@ -91,6 +101,9 @@ struct ForceDensity2DOptions {
   // The convective flux (above): for a flow whose Reynolds number is not small; not for an x-invariant scene (its
   // flux has no divergence). Newton stops when its step is below newton_tolerance of the state (max norms).
   bool convective_stress = false;
+  // Whose pair forces are linearised (above): the standard formulation's (5.1), the solids at zero velocity, or the
+  // transport-velocity formulation's with the generalized wall condition on the solids.
+  SphFormulation pair_forces = SphFormulation::standard;
   double newton_tolerance = 1e-10;
   int newton_max_iterations = 20;
 };

@@ -42,6 +42,11 @@ const OptionTable<ForceDensity2DOptions>& force_density_2d_options() {
           .boolean("convective_stress", &O::convective_stress,
                    "add the averaged convective flux -div sum m V V psi of the reconstructed particle velocities "
                    "(for Re not small; not for an x-invariant scene); the steady state then by Newton's method")
+          .choice("pair_forces", &O::pair_forces,
+                  "whose pair forces the model linearises on the lattice: standard ((5.1), the solids at zero "
+                  "velocity) or transport_velocity (Adami, Hu & Adams: the viscous term with eps = 0.01 h^2, the "
+                  "generalized wall condition's ghost velocity and extrapolated pressure on the solids), for a "
+                  "reference computed under that formulation")
           .number("newton_tolerance", &O::newton_tolerance,
                   "with convective_stress: Newton stops when its step is below this fraction of the state (max norms)",
                   1e-15, 1e-2)
@@ -95,14 +100,17 @@ void check_coarse_not_finer_than_lattice(const Scene& scene, double target) {
 
 TensorMesh2D force_density_coarse_mesh(const Scene& scene, const AveragingKernel& kernel, double spacing_over_eta) {
   if (!scene.box.periodic_x)
-    throw ConfigError("/scene", "the 2D force-density model needs a box periodic in x; scene '" + scene.name + "' is not");
+    throw ConfigError("/scene",
+                      "the 2D force-density model needs a box periodic in x; scene '" + scene.name + "' is not");
   if (scene.box.periodic_y == scene.has_walls)
-    throw ConfigError("/scene", "the 2D force-density model needs a box periodic in y or bounded by walls in y; scene '" +
-                                    scene.name + "' is neither");
+    throw ConfigError("/scene",
+                      "the 2D force-density model needs a box periodic in y or bounded by walls in y; scene '" +
+                          scene.name + "' is neither");
   const double target = spacing_over_eta * kernel.eta();
   check_coarse_not_finer_than_lattice(scene, target);
   // x: one column for an x-invariant scene (its fields have no x-structure to resolve), else cell-centred.
-  UniformMesh1D x{0.0, scene.box.lx, 1, true, scene.box.lx};  // as the 1D model's column (core/reduced/reduced_grid.hpp)
+  UniformMesh1D x{0.0, scene.box.lx, 1, true,
+                  scene.box.lx};  // as the 1D model's column (core/reduced/reduced_grid.hpp)
   if (!scene.x_invariant) {
     const int nx = static_cast<int>(std::lround(scene.box.lx / target));
     if (nx < 4)
@@ -136,16 +144,17 @@ TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorM
     const double origin = coarse.y.origin - below * s;
     const int ny = static_cast<int>(std::floor((scene.box.ly - origin) / s + 1e-9)) + 1;
     if (nx > scene.nx || s < scene.dx)
-      throw ConfigError("/solver/reconstruction_refinement",
-                        "the reconstruction mesh (spacing " + std::to_string(s) + ") is finer than the particle "
-                        "lattice (" + std::to_string(scene.dx) + "); lower the refinement");
+      throw ConfigError("/solver/reconstruction_refinement", "the reconstruction mesh (spacing " + std::to_string(s) +
+                                                                 ") is finer than the particle "
+                                                                 "lattice (" +
+                                                                 std::to_string(scene.dx) + "); lower the refinement");
     return {UniformMesh1D::cell_centred(0.0, scene.box.lx, nx, true), UniformMesh1D{origin, s, ny, false, 0.0}};
   }
   const bool lattice_rows = !scene.box.periodic_y && y_nodes == ReconstructionYNodes::lattice_rows;
   const int nx = coarse.nx() == 1 ? 1 : lattice ? scene.nx : coarse.nx() * refinement;
   const int ny = lattice || lattice_rows ? scene.ny
-                 : scene.box.periodic_y ? coarse.ny() * refinement
-                                        : static_cast<int>(std::lround(scene.box.ly * refinement / coarse.y.spacing));
+                 : scene.box.periodic_y  ? coarse.ny() * refinement
+                                         : static_cast<int>(std::lround(scene.box.ly * refinement / coarse.y.spacing));
   if (nx > scene.nx || ny > scene.ny)
     throw ConfigError("/solver/reconstruction_refinement",
                       "the reconstruction mesh (" + std::to_string(nx) + " x " + std::to_string(ny) +
@@ -164,17 +173,26 @@ void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, c
   // state with its own cross-phase attraction (7.1) does not have; in an x-invariant flow the density deviation stays
   // uniform (ṅ cancels pair by pair along each row), so the pressure's linearisation is never used there.
   if (scene.van_der_waals && !scene.x_invariant)
-    throw ConfigError("/scene", "the 2D force-density model linearises the pressure with one dP/dn for every pair; "
-                                "scene '" + scene.name + "' uses van der Waals and is not x-invariant");
+    throw ConfigError("/scene",
+                      "the 2D force-density model linearises the pressure with one dP/dn for every pair; "
+                      "scene '" +
+                          scene.name + "' uses van der Waals and is not x-invariant");
   if (std::abs(scene.box.lx / scene.nx - scene.dx) > 1e-12 * scene.dx ||
       std::abs(scene.box.ly / scene.ny - scene.dx) > 1e-12 * scene.dx)
     throw ConfigError("/scene", "the 2D force-density model needs the square lattice to fill the periodic box");
   if ((scene.has_walls || scene.solid_at) && scene.wall_model != WallModel::zero_velocity)
-    throw ConfigError("/scene/wall_model", "the 2D force-density model holds the solids at their known zero velocity; "
-                                           "use zero_velocity walls and solids");
+    throw ConfigError("/scene/wall_model",
+                      "the 2D force-density model holds the solids at their known zero velocity; "
+                      "use zero_velocity walls and solids (for a no-slip condition continued "
+                      "into the solid: solver.pair_forces transport_velocity, the generalized "
+                      "wall condition linearised)");
+  if (scene.solid_velocity)
+    throw ConfigError(
+        "/scene", "the 2D force-density model holds the solids at rest; scene '" + scene.name + "' moves its walls");
   if (o.convective_stress && scene.x_invariant)
-    throw ConfigError("/solver/convective_stress", "scene '" + scene.name + "' is x-invariant: its convective flux "
-                                                   "has no divergence (V_y = 0, nothing varies along x)");
+    throw ConfigError("/solver/convective_stress", "scene '" + scene.name +
+                                                       "' is x-invariant: its convective flux "
+                                                       "has no divergence (V_y = 0, nothing varies along x)");
   // The pair forces are linearised about the lattice's uniform number density: every solid particle a fluid particle
   // reaches must itself see a full stencil, so a wall must be two SPH supports thick.
   const double support = scene.smoothing_kernel().support();
@@ -187,8 +205,10 @@ void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, c
 void check_force_density_closure(const json& deconvolver, const std::string& path) {
   const std::string name = deconvolver.value("name", "");
   if (name == "cg" || name == "cgls")
-    throw ConfigError(path + "/closure/deconvolver", "the steady solve probes the closure once, which needs it "
-                                                     "linear in the data; " + closure_nonlinearity(deconvolver));
+    throw ConfigError(path + "/closure/deconvolver",
+                      "the steady solve probes the closure once, which needs it "
+                      "linear in the data; " +
+                          closure_nonlinearity(deconvolver));
   const std::string regularizer = deconvolver.value("regularizer", "identity");
   if (regularizer != "identity" && regularizer != "first_difference_zero_ends")
     throw ConfigError(path + "/closure/deconvolver/regularizer",

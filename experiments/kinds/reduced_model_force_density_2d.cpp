@@ -97,8 +97,8 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     return out;
   }
 
-  // Rows stored before reference.file, timing.min_seconds, the solver's convective flux and reconstruction_y_nodes
-  // existed (those ran without the flux, on cell-centred reconstruction rows).
+  // Rows stored before reference.file, timing.min_seconds, the solver's convective flux, reconstruction_y_nodes and
+  // pair_forces existed (those ran without the flux, on cell-centred reconstruction rows, with the standard forces).
   json upgraded_params(json stored) const override {
     stored = upgraded_reduced_params(with_reference_file_defaults(ExperimentKind::upgraded_params(std::move(stored))));
     if (stored.is_object() && stored.contains("solver") && stored["solver"].is_object() &&
@@ -111,6 +111,9 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     if (stored.is_object() && stored.contains("solver") && stored["solver"].is_object() &&
         !stored["solver"].contains("reconstruction_y_nodes"))
       stored["solver"]["reconstruction_y_nodes"] = name_of(ReconstructionYNodes::cell_centred);
+    if (stored.is_object() && stored.contains("solver") && stored["solver"].is_object() &&
+        !stored["solver"].contains("pair_forces"))
+      stored["solver"]["pair_forces"] = name_of(SphFormulation::standard);
     return stored;
   }
 

@@ -101,6 +101,8 @@ experiments/cylinders/tvf_re1.json results/cylinders/tvf_re1
 experiments/cylinders/tvf_re10.json results/cylinders/tvf_re10
 experiments/cylinders/linearised_steady.json results/cylinders/linearised_steady
 experiments/cylinders/reduced_steady_like_for_like.json results/cylinders/reduced_steady_like_for_like
+experiments/cylinders/reduced_tvf.json results/cylinders/reduced_tvf
+experiments/cylinders/reduced_tvf_diagnostics.json results/cylinders/reduced_tvf/diagnostics
 LIST
 fi
 

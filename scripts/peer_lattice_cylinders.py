@@ -3,7 +3,7 @@
 cylinder-lattice permeability (results/cylinders/direct): an independent scheme, so the comparison is the Darcy
 permeability against the Darcy permeability, not particle against particle.
 
-  /usr/bin/python3 scripts/peer_lattice_cylinders.py --nx 48 [--tf 10000] [--fx-factor 1] [--window-over-tau 1.25]
+  /usr/bin/python3 scripts/peer_lattice_cylinders.py --nx 48 [--tf 10000] [--fx-factor 1] [--sound-factor 1] [--window-over-tau 1.25]
         [--tol 1e-4] [--every 10] [--out FILE.json] [--save-particles FILE.npz] [-- PYSPH_OPTIONS ...]
 
 The example (unchanged, imported; only its module constants that follow from the resolution are recomputed):
@@ -16,7 +16,10 @@ The example (unchanged, imported; only its module constants that follow from the
   - rho0 = 1000, nu = a Umax / Re = 1e-6 (Umax = 5e-5, Re = 1), c0 = 10 Umax, body force fx = 1.5e-7 on the fluid;
     the example's own resolution is nx = 100 and tf = 1000.
 --nx sets the lattice (dx = L/nx, and the dt above with it); --fx-factor scales fx (Stokes flow is linear in fx:
-at 0.1 the Reynolds and Mach numbers fall tenfold, the check that the example's Re ~ 1 leaves k unchanged).
+at 0.1 the Reynolds and Mach numbers fall tenfold, the check that the example's Re ~ 1 leaves k unchanged);
+--sound-factor scales the example's velocity scale Umax and with it c0 = 10 Umax, p0 = c0^2 rho0 and the CFL step,
+nu kept (at --fx-factor 10 the flow is about eight times faster: --sound-factor 10 keeps the Mach number near the
+example's, as closurelab's scene scales its sound speed with sqrt(g L)).
 
 The permeability: k = nu <u> / fx with <u> the superficial velocity, sum_fluid m u / (rho0 L^2) (the particle mass
 is rho0 dx^2, so this is closurelab's sum_fluid u dx^2 / L^2), taken every --every steps. Steady state by k itself:
@@ -47,8 +50,12 @@ import pysph.examples.lattice_cylinders as lc
 K_REF_OVER_L2 = 0.032948
 
 
-def configure(nx, fx_factor, tf):
+def configure(nx, fx_factor, tf, sound_factor=1.0):
     """The example's module constants at lattice nx: the same formulas as its module body."""
+    if sound_factor != 1.0:  # nu = a Umax / Re stays the example's
+        lc.Umax = 5e-5 * sound_factor
+        lc.c0 = 10 * lc.Umax
+        lc.p0 = lc.c0 * lc.c0 * lc.rho0
     lc.nx = nx
     lc.dx = lc.L / nx
     lc.ghost_extent = 5 * 1.5 * lc.dx
@@ -103,6 +110,8 @@ def main():
     ap.add_argument("--nx", type=int, default=48)
     ap.add_argument("--tf", type=float, default=10000.0, help="the longest model time (the example's: 1000)")
     ap.add_argument("--fx-factor", type=float, default=1.0)
+    ap.add_argument("--sound-factor", type=float, default=1.0,
+                    help="scales Umax, c0 = 10 Umax and p0 = c0^2 rho0 (nu kept)")
     ap.add_argument("--window-over-tau", type=float, default=1.25,
                     help="the steady test's window in tau = k_ref/nu (1.25: 412, two sound periods L/c0)")
     ap.add_argument("--tol", type=float, default=1e-4)
@@ -111,7 +120,7 @@ def main():
     ap.add_argument("--save-particles", default="", help="the final local particles, .npz")
     a = ap.parse_args(argv)
 
-    configure(a.nx, a.fx_factor, a.tf)
+    configure(a.nx, a.fx_factor, a.tf, a.sound_factor)
     tau = K_REF_OVER_L2 * lc.L ** 2 / lc.nu
     app = PermeabilityWatch(fname="lattice_cylinders_nx%d" % a.nx)
     app.setup_watch(a.every, a.window_over_tau * tau, a.tol)

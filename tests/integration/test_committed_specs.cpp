@@ -33,6 +33,12 @@ class CommittedSpec : public ::testing::TestWithParam<std::string> {};
 TEST(CommittedSpecs, ThereAreSpecsToCheck) { EXPECT_GE(committed_specs().size(), 10u); }
 
 TEST_P(CommittedSpec, Validates) {
+  // The committed specs run from the repository root (README): a reference.file path is relative to it.
+  struct RestoreCwd {
+    fs::path was = fs::current_path();
+    ~RestoreCwd() { fs::current_path(was); }
+  } restore;
+  fs::current_path(CLOSURELAB_SOURCE_DIR);
   const std::string file = (fs::path(CLOSURELAB_SOURCE_DIR) / "experiments" / GetParam()).string();
   try {
     const json spec = read_json_file(file);

@@ -109,8 +109,8 @@ TensorMesh2D force_density_coarse_mesh(const Scene& scene, const AveragingKernel
   const double target = spacing_over_eta * kernel.eta();
   check_coarse_not_finer_than_lattice(scene, target);
   // x: one column for an x-invariant scene (its fields have no x-structure to resolve), else cell-centred.
-  UniformMesh1D x{0.0, scene.box.lx, 1, true,
-                  scene.box.lx};  // as the 1D model's column (core/reduced/reduced_grid.hpp)
+  // One column, as the 1D model's (core/reduced/reduced_grid.hpp).
+  UniformMesh1D x{0.0, scene.box.lx, 1, true, scene.box.lx};
   if (!scene.x_invariant) {
     const int nx = static_cast<int>(std::lround(scene.box.lx / target));
     if (nx < 4)
@@ -144,10 +144,10 @@ TensorMesh2D force_density_reconstruction_mesh(const Scene& scene, const TensorM
     const double origin = coarse.y.origin - below * s;
     const int ny = static_cast<int>(std::floor((scene.box.ly - origin) / s + 1e-9)) + 1;
     if (nx > scene.nx || s < scene.dx)
-      throw ConfigError("/solver/reconstruction_refinement", "the reconstruction mesh (spacing " + std::to_string(s) +
-                                                                 ") is finer than the particle "
-                                                                 "lattice (" +
-                                                                 std::to_string(scene.dx) + "); lower the refinement");
+      throw ConfigError("/solver/reconstruction_refinement",
+                        "the reconstruction mesh (spacing " + std::to_string(s) +
+                            ") is finer than the particle lattice (" + std::to_string(scene.dx) +
+                            "); lower the refinement");
     return {UniformMesh1D::cell_centred(0.0, scene.box.lx, nx, true), UniformMesh1D{origin, s, ny, false, 0.0}};
   }
   const bool lattice_rows = !scene.box.periodic_y && y_nodes == ReconstructionYNodes::lattice_rows;
@@ -174,8 +174,7 @@ void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, c
   // uniform (ṅ cancels pair by pair along each row), so the pressure's linearisation is never used there.
   if (scene.van_der_waals && !scene.x_invariant)
     throw ConfigError("/scene",
-                      "the 2D force-density model linearises the pressure with one dP/dn for every pair; "
-                      "scene '" +
+                      "the 2D force-density model linearises the pressure with one dP/dn for every pair; scene '" +
                           scene.name + "' uses van der Waals and is not x-invariant");
   if (std::abs(scene.box.lx / scene.nx - scene.dx) > 1e-12 * scene.dx ||
       std::abs(scene.box.ly / scene.ny - scene.dx) > 1e-12 * scene.dx)
@@ -190,9 +189,9 @@ void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, c
     throw ConfigError(
         "/scene", "the 2D force-density model holds the solids at rest; scene '" + scene.name + "' moves its walls");
   if (o.convective_stress && scene.x_invariant)
-    throw ConfigError("/solver/convective_stress", "scene '" + scene.name +
-                                                       "' is x-invariant: its convective flux "
-                                                       "has no divergence (V_y = 0, nothing varies along x)");
+    throw ConfigError("/solver/convective_stress",
+                      "scene '" + scene.name +
+                          "' is x-invariant: its convective flux has no divergence (V_y = 0, nothing varies along x)");
   // The pair forces are linearised about the lattice's uniform number density: every solid particle a fluid particle
   // reaches must itself see a full stencil, so a wall must be two SPH supports thick.
   const double support = scene.smoothing_kernel().support();
@@ -206,8 +205,7 @@ void check_force_density_closure(const json& deconvolver, const std::string& pat
   const std::string name = deconvolver.value("name", "");
   if (name == "cg" || name == "cgls")
     throw ConfigError(path + "/closure/deconvolver",
-                      "the steady solve probes the closure once, which needs it "
-                      "linear in the data; " +
+                      "the steady solve probes the closure once, which needs it linear in the data; " +
                           closure_nonlinearity(deconvolver));
   const std::string regularizer = deconvolver.value("regularizer", "identity");
   if (regularizer != "identity" && regularizer != "first_difference_zero_ends")

@@ -1,7 +1,8 @@
 #pragma once
 // The 2D force-density model's assembly helpers (core/reduced/force_density_2d.cpp only): a scratch row over the
 // reconstruction nodes, the window's 1D factor on an axis and the weighted first difference over the reconstruction
-// mesh's links (the prior of first_difference_zero_ends). The lattice's pair stencil: core/sph/lattice_stencil.hpp.
+// mesh's links (the prior of first_difference_zero_ends), and the transport-velocity linearisation's solid-particle
+// data (force_density_2d_transport.cpp). The lattice's pair stencil: core/sph/lattice_stencil.hpp.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <algorithm>
@@ -13,6 +14,8 @@
 
 #include "core/averaging/averaging_kernel.hpp"
 #include "core/base/mesh.hpp"
+#include "core/sph/lattice_stencil.hpp"
+#include "core/sph/scene.hpp"
 #include "core/sph/sph_kernel.hpp"
 
 namespace closurelab::force_density_detail {
@@ -95,6 +98,21 @@ Eigen::SparseMatrix<double> link_differences(const TensorMesh2D& mesh, const std
   l.setFromTriplets(t.begin(), t.end());
   return l;
 }
+
+// What the transport-velocity pair forces need beyond the lattice stencil (the header's formulation): each solid
+// site's Shepard weights W_wf / Σ_f W_wf over its fluid neighbours (SetWallVelocity, SolidWallPressureBC; none where
+// Σ_f W_wf is at most 1e-12, as the engine) and its hydrostatic pressure g(x_w) · Σ_f ρ_f (x_w − x_f) W_wf / Σ_f W_wf
+// at rest, the volumes V² of a fluid (1/n0²) and a wall particle (ε'⁴), η / μ = ρ_rest / ρ0, ε = 0.01 h², and the
+// rest pressure's share 2 P0 / n0³ of the pressure coefficient.
+struct TransportLinearisation {
+  std::vector<std::vector<std::pair<int, double>>> shepard;
+  std::vector<double> hydrostatic;
+  double vol2_fluid = 0.0, vol2_wall = 0.0, eta_per_mu = 0.0, eps = 0.0, rest_volume_term = 0.0;
+};
+// `site`: the particle of each lattice site (j n_x + i); `n0`, `p0`: the lattice's number density and pressure at rest.
+TransportLinearisation transport_linearisation(const Scene& scene, const ParticleSystem& lattice,
+                                               const std::vector<int>& site, const std::vector<LatticeOffset>& stencil,
+                                               double n0, double p0);
 
 // big z = rhs by LU of the equilibrated system (force_density_2d_solve.cpp): false, the reason in `issue`, when it is
 // singular to working precision; with `minimum_norm`, the minimum-norm solution of a rank-deficient system.

@@ -47,8 +47,8 @@ ForceDensitySolver2D::Interp ForceDensitySolver2D::bilinear_weights(const Tensor
 }
 
 ForceDensitySolver2D::ForceDensitySolver2D(const Scene& scene, const AveragingKernel& kernel, Deconvolver& velocity,
-                                           Deconvolver& density, ForceDensity2DOptions options)
-    : scene_(scene), velocity_(velocity), density_(density), opt_(std::move(options)) {
+                                           Deconvolver& density, ForceDensity2DOptions options, Integrator* stepper)
+    : scene_(scene), velocity_(velocity), density_(density), opt_(std::move(options)), stepper_(stepper) {
   const auto t0 = std::chrono::steady_clock::now();
   check_force_density_2d(scene, kernel, opt_);
   coarse_ = force_density_coarse_mesh(scene, kernel, opt_.spacing_over_eta);

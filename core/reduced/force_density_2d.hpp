@@ -37,10 +37,17 @@
 // unknowns; the velocity's unknowns are the reconstruction nodes some fluid particle reads, the others are zero)
 // and A_n = (Σψ)⁻¹ Σ_all ψ P_a. All the maps from the reconstruction to the coarse rates are affine and
 // assembled once (dense, coarse nodes × reconstruction nodes), entries with ψ below window_cutoff · ψ(0) dropped.
-// Steady state: the closure must be linear in its data (a fixed parameter); one linear solve of the probed affine
-// rate, bordered by the total density deviation, which the rate leaves free. (Explicit steps at (5.21)–(5.22)
-// diverge with a weakly regularised closure, and at α = 1e-2 had not settled to 1e-9 by t = 20 on the test lattice:
-// transients are left to a library integrator, not built yet.)
+// Steady state (solver.time_integration newton, the default): the closure must be linear in its data (a fixed
+// parameter); one linear solve of the probed affine rate, bordered by the total density deviation, which the rate
+// leaves free (and, with the convective flux, Newton's iteration from that Stokes solution).
+// Marched (any stepping integrator of the family, core/reduced/integrator.hpp): the state z = (v̄_x, v̄_y, n̄) on the
+// free nodes from rest, as the direct SPH starts, advanced by the rate above with the closure re-applied at every
+// evaluation (so any registered deconvolver serves, cg included, under an integrator that does not probe the rate),
+// by the shared time loop (core/base/time_loop.hpp) to a steady state or a target time. The loop's step is (5.21)–
+// (5.22) on the coarse spacing with the sound speed in the signal speed (n̄ carries the pressure: the system is
+// acoustic), κ · min(ρ0 Δ²/μ, Δ/(c + max|v̄|)); an ARKODE integrator takes its own internal steps within it. Its
+// IMEX split: the linear maps of the pair forces (viscous, pressure, continuity) implicit, the body force and the
+// convective flux explicit. (The paper's explicit step at that κ diverges with a weakly regularised closure.)
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>
@@ -54,6 +61,7 @@
 #include "core/base/params.hpp"
 #include "core/closure/deconvolver.hpp"
 #include "core/closure/forward_operator.hpp"
+#include "core/reduced/integrator.hpp"
 #include "core/reduced/meso_solver.hpp"
 #include "core/sph/scene.hpp"
 #include "core/sph/transport_velocity.hpp"
@@ -80,7 +88,8 @@ struct EnumNames<HeldNodeValue> {
       {{HeldNodeValue::imposed, "imposed"}, {HeldNodeValue::reconstructed, "reconstructed"}}};
 };
 
-struct ForceDensity2DOptions {
+// The run control (mode steady or target_time, ...; core/base/time_loop.hpp) applies when marched.
+struct ForceDensity2DOptions : TimeLoopOptions {
   double spacing_over_eta = 1.0;      // Δ / η'
   int reconstruction_refinement = 2;  // the reconstruction mesh's spacing is Δ / this (1: the coarse mesh; 0: the lattice)
   // Along a walled y (refinement ≥ 1): where the reconstruction's nodes lie. The fluid particles next to a wall read
@@ -106,6 +115,8 @@ struct ForceDensity2DOptions {
   SphFormulation pair_forces = SphFormulation::standard;
   double newton_tolerance = 1e-10;
   int newton_max_iterations = 20;
+  // Marched: the loop's step coefficient (above; an ARKODE integrator's error control works inside the step).
+  double kappa = 0.25;
 };
 
 // The solver section, each option declared once (an OptionTable, core/base/option_table.hpp, in
@@ -137,15 +148,20 @@ struct ForceDensity2DResult : ClosureRunResult {
   long newton_iterations = 0;         // with the convective flux: Newton's steps from the Stokes solution
   double newton_seconds = 0.0;        // and their time (within the run's)
   double newton_last_step = 0.0;      // the last step's size relative to the state (max norms)
+  long rate_evaluations = 0;          // marched: the rate's evaluations (the closure applied at each)
 };
 
 class ForceDensitySolver2D {
  public:
   // Both deconvolvers (two instances of one configuration) must outlive the solver; bound here to A_v and A_n.
+  // `stepper` null: the steady state (newton); else the integrator that marches the state (held by reference).
   ForceDensitySolver2D(const Scene& scene, const AveragingKernel& kernel, Deconvolver& velocity, Deconvolver& density,
-                       ForceDensity2DOptions options);
+                       ForceDensity2DOptions options, Integrator* stepper = nullptr);
 
   ForceDensity2DResult run();
+  // Marched: one step of dt by the integrator (false on a numerical issue, said in `issue`), and the loop's step.
+  bool step(double dt, std::string& issue);
+  double time_step() const;
   // The rates at the current state on the free nodes (both components of v̄, then n̄), for tests.
   bool rate(Eigen::VectorXd& ax, Eigen::VectorXd& ay, Eigen::VectorXd& an, std::string& issue);
   // The rates on every coarse node from reconstructions rx, ry (velocity) and rn (density deviation) on the
@@ -185,6 +201,12 @@ class ForceDensitySolver2D {
   // Every column of `data` at once (Deconvolver::solve_columns), the velocity's on every reconstruction node.
   bool deconvolve_columns(Deconvolver& d, const Eigen::MatrixXd& data, Eigen::MatrixXd& x, std::string& issue);
   bool steady_solve(std::string& issue);
+  // The state (v̄_x, v̄_y, n̄ on the free nodes) marched by the time loop; its status in `res`.
+  void march(ForceDensity2DResult& res);
+  // Which part of the rate an evaluation returns (the IMEX split above).
+  enum class RatePart { all, stiff, nonstiff };
+  // The rate of the stacked state u = (v̄_x, v̄_y, n̄) on the free nodes: the state set from u, the closure applied.
+  bool stacked_rate(RatePart part, const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue);
   // The convective flux's maps (force_density_2d_convective.cpp): assembled in the constructor when asked, and
   // Newton's iteration on the bordered steady system `big` z = rhs plus the flux, from z (the Stokes solution);
   // xv, x0v: the velocity closure's response to unit data and to zero data.
@@ -205,6 +227,7 @@ class ForceDensitySolver2D {
   const Scene& scene_;
   Deconvolver &velocity_, &density_;
   ForceDensity2DOptions opt_;
+  Integrator* stepper_ = nullptr;
   TensorMesh2D coarse_, recon_;
   ForwardOperator op_v_, op_n_;
   std::vector<Interp> interp_;
@@ -231,11 +254,13 @@ class ForceDensitySolver2D {
   Eigen::SparseMatrix<double, Eigen::RowMajor> conv_dx_, conv_dy_, fluid_interp_;
   long newton_iterations_ = 0;
   double newton_seconds_ = 0.0, newton_last_step_ = 0.0;
+  long rate_evaluations_ = 0;  // marched: the closure applied this many times (three deconvolutions each)
 };
 
-// The closure must be linear in its data when the steady system is probed: not cg/cgls (ConfigError at
-// `path`/closure/deconvolver); a parameter rule is served by the two-pass rule (core/reduced/closure_rule.hpp; each
-// deconvolver's parameter chosen once from the steady state reached at its configured fixed parameter).
-void check_force_density_closure(const json& resolved_deconvolver, const std::string& path);
+// The closure must be linear in its data when the steady system is probed (`steady`: time_integration newton): not
+// cg/cgls (ConfigError at `path`/closure/deconvolver); a parameter rule is served by the two-pass rule
+// (core/reduced/closure_rule.hpp; each deconvolver's parameter chosen once from the steady state reached at its
+// configured fixed parameter). Marched, the integrator's own needs are checked (check_implicit_closure).
+void check_force_density_closure(const json& resolved_deconvolver, const std::string& path, bool steady = true);
 
 }  // namespace closurelab

@@ -51,7 +51,19 @@ const OptionTable<ForceDensity2DOptions>& force_density_2d_options() {
                   "with convective_stress: Newton stops when its step is below this fraction of the state (max norms)",
                   1e-15, 1e-2)
           .integer("newton_max_iterations", &O::newton_max_iterations,
-                   "with convective_stress: Newton's steps at most (numerical_issue beyond)", 1, 200);
+                   "with convective_stress: Newton's steps at most (numerical_issue beyond)", 1, 200)
+          .unbound(entry_param(
+              "time_integration", "newton",
+              "newton: the steady state by the model's own solve (the probed affine rate bordered by the total "
+              "density deviation; Newton's iteration with convective_stress); any other registered integrator "
+              "(closurelab list integrator) marches the state from rest to mode's end, the closure applied at every "
+              "rate evaluation (arkode_imex: the pair forces' linear maps implicit, the body force and the "
+              "convective flux explicit)"))
+          .number("kappa", &O::kappa,
+                  "marched: the loop's step kappa min(rho0 Delta^2/mu, Delta/(c + max|v|)) ((5.21)-(5.22) with the "
+                  "sound speed; an ARKODE integrator steps inside it as its error control needs)",
+                  0.0, 1e3, true)
+          .time_loop();
   return table;
 }
 
@@ -201,9 +213,9 @@ void check_force_density_2d(const Scene& scene, const AveragingKernel& kernel, c
                                     "eta_over_ly or n_y");
 }
 
-void check_force_density_closure(const json& deconvolver, const std::string& path) {
+void check_force_density_closure(const json& deconvolver, const std::string& path, bool steady) {
   const std::string name = deconvolver.value("name", "");
-  if (name == "cg" || name == "cgls")
+  if (steady && (name == "cg" || name == "cgls"))
     throw ConfigError(path + "/closure/deconvolver",
                       "the steady solve probes the closure once, which needs it linear in the data; " +
                           closure_nonlinearity(deconvolver));

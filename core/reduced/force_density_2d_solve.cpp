@@ -232,17 +232,23 @@ ForceDensity2DResult ForceDensitySolver2D::run() {
   std::string issue;
   const auto t0 = std::chrono::steady_clock::now();
   const double cpu0 = process_cpu_seconds();
-  const bool ok = steady_solve(issue);
-  res.status = ok ? Status::converged : Status::numerical_issue;
-  res.message = issue;
-  res.wall_seconds = seconds_since(t0);
-  res.cpu_seconds = process_cpu_seconds() - cpu0;
+  if (stepper_) {
+    march(res);  // the loop's status, message and times
+    issue = res.message;
+  } else {
+    const bool ok = steady_solve(issue);
+    res.status = ok ? Status::converged : Status::numerical_issue;
+    res.message = issue;
+    res.wall_seconds = seconds_since(t0);
+    res.cpu_seconds = process_cpu_seconds() - cpu0;
+  }
   res.mesh = coarse_;
   res.vx = reported(vx_, velocity_, full_v_, issue);
   res.vy = reported(vy_, velocity_, full_v_, issue);
   res.density = reported(n_, density_, full_n_, issue);
   res.superficial_velocity = superficial_velocity(issue);
-  if (res.status == Status::converged && (!res.vx.allFinite() || !res.vy.allFinite())) {
+  if ((res.status == Status::converged || res.status == Status::target_time) &&
+      (!res.vx.allFinite() || !res.vy.allFinite())) {
     res.status = Status::numerical_issue;
     res.message = issue;
   }
@@ -257,6 +263,7 @@ ForceDensity2DResult ForceDensitySolver2D::run() {
   res.newton_iterations = newton_iterations_;
   res.newton_seconds = newton_seconds_;
   res.newton_last_step = newton_last_step_;
+  res.rate_evaluations = rate_evaluations_;
   return res;
 }
 

@@ -14,6 +14,7 @@
 #include "core/base/option_table.hpp"
 #include "core/reduced/closure_rule.hpp"
 #include "core/reduced/force_density_2d.hpp"
+#include "core/reduced/implicit_closure.hpp"
 #include "core/sph/sph_run.hpp"
 #include "experiments/kinds/direct_reference.hpp"
 #include "experiments/kinds/node_fields.hpp"
@@ -44,7 +45,8 @@ class ReducedModelForceDensity2D : public ExperimentKind {
   std::string name() const override { return "reduced_model_2d_force_density"; }
   std::string description() const override {
     return "two-dimensional linearised force-density reduced model with solids (velocity and density deviation "
-           "deconvolved, the exact averaged pair forces of the lattice, steady state by one linear solve) on a doubly "
+           "deconvolved, the exact averaged pair forces of the lattice, steady state by one linear solve, or marched from "
+           "rest by a registered integrator) on a doubly "
            "periodic or walled scene (walls are solids; an x-invariant scene is one column), vs the averaged direct SPH, "
            "with the Darcy permeability where the scene has one, cost and speed-up";
   }
@@ -68,6 +70,30 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     out["closure"] = resolve_section(cell, "closure", force_density_closure_section().schema(), path);
     out["closure"]["deconvolver"] = reg.deconvolvers.resolve(out["closure"]["deconvolver"], path + "/closure/deconvolver");
     out["solver"] = resolve_section(cell, "solver", force_density_2d_schema(), path);
+    check_time_loop(out["solver"], path + "/solver");
+    out["solver"]["time_integration"] =
+        resolve_time_integration(reg, out["solver"]["time_integration"], path + "/solver/time_integration");
+    const bool marched = is_marched(out);
+    {  // the integrator: newton (the model's steady solve, mode steady) or one that marches and serves the closure
+      const auto integrator = make_integrator(reg, out["solver"], path);
+      const json& s = out["solver"];
+      const json& deconvolver = out["closure"]["deconvolver"];
+      if (!marched && s.at("mode").get<std::string>() != "steady")
+        throw ConfigError(path + "/solver/mode", "time_integration newton gives the steady state only: set mode to "
+                                                 "steady, or march to a target time with a stepping integrator "
+                                                 "(arkode_erk, arkode_imex, explicit, backward_euler)");
+      if (marched) check_implicit_closure(s, *integrator, deconvolver, path);
+      if (marched && ClosureParameterRule::applies(deconvolver, integrator->needs_affine_rate()))
+        throw ConfigError(path + "/closure/deconvolver/rule",
+                          integrator_name(s) + " needs a closure linear in the coarse state, and a marched run has "
+                                               "no two-pass rule (it chooses from the steady state of the steady "
+                                               "solve): use rule fixed, an ARKODE integrator, or time_integration "
+                                               "newton");
+      if (marched && integrator->needs_affine_rate() && s.at("convective_stress").get<bool>())
+        throw ConfigError(path + "/solver/time_integration",
+                          integrator_name(s) + " needs a rate affine in the coarse state; the convective flux is "
+                                               "quadratic: use an ARKODE integrator, or time_integration newton");
+    }
     out["reference"] = resolve_section(cell, "reference", reference_with_file_schema(), path);
     out["reference"]["solver"] =
         resolve_params(out["reference"]["solver"], sph_solver_schema(), path + "/reference/solver", {});
@@ -78,7 +104,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     check_reference_file(cell, out, *scene, path);  // reference_profiles.hpp
     try {
       check_force_density_2d(*scene, *kernel, options(out));
-      check_force_density_closure(out["closure"]["deconvolver"], "");
+      check_force_density_closure(out["closure"]["deconvolver"], "", !marched);
       // The operators are at most coarse nodes x reconstruction nodes (the free rows, the velocity's columns the
       // nodes some fluid particle reads); a rule's pass 1 runs at the configured k too.
       const ForceDensity2DOptions o = options(out);
@@ -88,6 +114,12 @@ class ReducedModelForceDensity2D : public ExperimentKind {
       check_truncation_rank(out["closure"]["deconvolver"], static_cast<long>(coarse.size()), static_cast<long>(recon.size()),
                             "coarse nodes x reconstruction nodes", out["closure"]["deconvolver"].value("rule", "fixed") != "fixed",
                             "");
+      if (marched) {  // the loop's largest step: the signal speed is at least the sound speed
+        const double h = coarse.nx() == 1 ? coarse.y.spacing : std::min(coarse.x.spacing, coarse.y.spacing);
+        check_stepped_run(*scene, out["solver"], h,
+                          coarse_time_step(o.kappa, scene->rho0, h, scene->max_viscosity(), scene->sound_speed),
+                          "/solver");
+      }
     } catch (const ConfigError& e) {
       throw ConfigError(path + e.path(), e.message());
     }
@@ -97,8 +129,9 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     return out;
   }
 
-  // Rows stored before reference.file, timing.min_seconds, the solver's convective flux, reconstruction_y_nodes and
-  // pair_forces existed (those ran without the flux, on cell-centred reconstruction rows, with the standard forces).
+  // Rows stored before reference.file, timing.min_seconds, the solver's convective flux, reconstruction_y_nodes,
+  // pair_forces and time_integration existed (those ran without the flux, on cell-centred reconstruction rows, with
+  // the standard forces, to the steady state by the model's solve).
   json upgraded_params(json stored) const override {
     stored = upgraded_reduced_params(with_reference_file_defaults(ExperimentKind::upgraded_params(std::move(stored))));
     if (stored.is_object() && stored.contains("solver") && stored["solver"].is_object() &&
@@ -114,13 +147,23 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     if (stored.is_object() && stored.contains("solver") && stored["solver"].is_object() &&
         !stored["solver"].contains("pair_forces"))
       stored["solver"]["pair_forces"] = name_of(SphFormulation::standard);
+    if (stored.is_object() && stored.contains("solver") && stored["solver"].is_object() &&
+        !stored["solver"].contains("time_integration")) {  // the steady solve, before the model could march
+      const ParamSchema schema = force_density_2d_schema();
+      for (const char* key : {"time_integration", "kappa", "mode", "target_time", "steady_tolerance", "steady_window",
+                              "max_time", "max_steps"})
+        for (const ParamSpec& p : schema)
+          if (p.name == key) stored["solver"][key] = p.default_value;
+    }
     return stored;
   }
 
   json run(const json& cfg, const Registry& reg, const ProgressFn& progress) const override {
     const auto scene = reg.scenes.create(cfg.at("scene"), "/scene");
     const auto kernel = reg.kernels.create(cfg.at("kernel"), "/kernel");
-    const ForceDensity2DOptions opt = options(cfg);
+    ForceDensity2DOptions opt = options(cfg);
+    const bool marched = is_marched(cfg);
+    opt.progress = progress;
     const std::optional<CellReference> ref =
         cell_reference(cfg, *scene, *kernel, cfg.at("reference").at("observe_spacing_over_eta").get<double>() * scene->eta,
                        {}, progress);
@@ -130,10 +173,11 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     // The two-pass rule (core/reduced/closure_rule.hpp): the steady state is one linear solve, so a parameter rule
     // is chosen once from pass 1's steady data, each deconvolver from its own (v̄_x for the velocity, n̄ for the
     // density deviation), and fixed for pass 2.
-    ClosureParameterRule rule(reg, cfg.at("closure").at("deconvolver"), true, opt.noise_level);
-    // The model and the two deconvolvers it holds by reference, built for one pass.
+    ClosureParameterRule rule(reg, cfg.at("closure").at("deconvolver"), !marched, opt.noise_level);
+    // The model and the two deconvolvers and the integrator it holds by reference, built for one pass.
     struct ForceDensityModel {
       std::unique_ptr<Deconvolver> velocity, density;
+      std::unique_ptr<Integrator> stepper;  // null: the steady solve
       std::optional<ForceDensitySolver2D> solver;
       ForceDensity2DResult run() { return solver->run(); }
     };
@@ -143,7 +187,8 @@ class ReducedModelForceDensity2D : public ExperimentKind {
             auto m = std::make_unique<ForceDensityModel>();
             m->velocity = rule.deconvolver(pass, "velocity");
             m->density = rule.deconvolver(pass, "density");
-            m->solver.emplace(*scene, *kernel, *m->velocity, *m->density, opt);
+            if (marched) m->stepper = make_integrator(reg, cfg.at("solver"), "");
+            m->solver.emplace(*scene, *kernel, *m->velocity, *m->density, opt, m->stepper.get());
             return m;
           };
           auto passes = run_two_pass(rule, build, [&](ForceDensityModel& first, const ForceDensity2DResult&) {
@@ -183,7 +228,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
     json fields = {{"x", mesh.x.nodes()}, {"y", mesh.y.nodes()}, {"reduced", field_json(reduced_field)},
                    {"outside_solid", outside}, {"reduced_density_deviation", reduced.density}};
     row["status"] = row_status(reduced.status);
-    if (reduced.status != Status::converged) row["message"] = reduced.message;
+    if (reduced.status != Status::converged && reduced.status != Status::target_time) row["message"] = reduced.message;
     row["reduced_model"] = reduced.to_json();
     if (rule.two_pass()) row["reduced_model"]["two_pass_rule"] = rule.record();
     // The reference's particles, the direct run's final state or the file's, averaged and scored alike.
@@ -220,7 +265,10 @@ class ReducedModelForceDensity2D : public ExperimentKind {
                  {"probe_seconds", reduced.probe_seconds},
                  {"deconvolution_seconds", reduced.deconvolution_seconds},
                  {"deconvolution_matvecs", reduced.deconvolution_matvecs}};
-    if (opt.convective_stress) {
+    if (marched) {
+      cost["steps"] = reduced.steps;
+      cost["rate_evaluations"] = reduced.rate_evaluations;
+    } else if (opt.convective_stress) {
       cost["newton_iterations"] = reduced.newton_iterations;
       cost["newton_seconds"] = reduced.newton_seconds;
       cost["newton_last_relative_step"] = reduced.newton_last_step;
@@ -241,6 +289,8 @@ class ReducedModelForceDensity2D : public ExperimentKind {
   }
 
  private:
+  // Marched (a stepping integrator) or the steady solve (newton).
+  static bool is_marched(const json& cfg) { return integrator_name(cfg.at("solver")) != "newton"; }
   static ForceDensity2DOptions options(const json& cfg) {
     ForceDensity2DOptions o = force_density_2d_options_from(cfg.at("solver"));
     force_density_closure_section().read_into(cfg.at("closure"), o);

@@ -252,6 +252,10 @@ class ForceDensitySolver2D {
   // bilinear interpolation from the reconstruction mesh (rows: fluid particles).
   std::vector<int> fluid_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> conv_dx_, conv_dy_, fluid_interp_;
+  // The rates' evaluation on the reconstruction's node pairs (force_density_2d_convective.cpp): T_b = D_b S over the
+  // pairs {j, l} (j ≤ l) of nodes that share a cell; its cost does not grow with the particles.
+  std::vector<std::array<int, 2>> pairs_;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> pairs_x_, pairs_y_;
   long newton_iterations_ = 0;
   double newton_seconds_ = 0.0, newton_last_step_ = 0.0;
   long rate_evaluations_ = 0;  // marched: the closure applied this many times (three deconvolutions each)

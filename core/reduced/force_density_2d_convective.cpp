@@ -2,10 +2,20 @@
 // D_b(n, a) = m ∂_{q_b} ψ(x_n − q_a) / ρ̄_n over the fluid particles at their lattice sites, the rates
 //   q_x = D_x (V_x V_x) + D_y (V_x V_y),   q_y = D_x (V_y V_x) + D_y (V_y V_y)   (products per particle),
 // V = P r the reconstruction r interpolated to the particles, and Newton's iteration on the steady system with them.
+// The rates are evaluated on the reconstruction's node pairs, at a cost that does not grow with the particles: each
+// V_a is bilinear in r (four nodes), so (V_a)_b (V_a)_c = Σ_{j,l} P_aj P_al r_bj r_cl and, summed over the particles,
+//   Σ_a D(n, a) V_a,b V_a,c = Σ_p T(n, p) π_bc(p),   T(n, p) = Σ_a D(n, a) S_a(p),
+// over the node pairs p = {j, l} that share a cell, π_bc(p) = r_bj r_cl + r_bl r_cj (j ≠ l) or r_bj r_cj (j = l), S_a(p)
+// the weight product of p in particle a (P_aj P_al, doubled where two of a's corners are one node). The same sum
+// in another order (the golden Newton cell of tests/golden is bit-identical; the flux test of
+// tests/numerical/test_force_density_convective.cpp holds it to the averaged momentum's rate); the particle maps
+// stay for the steady Newton's Jacobian.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <sstream>
+#include <utility>
 
 #include "core/base/repeated_timing.hpp"
 #include "core/reduced/force_density_2d.hpp"
@@ -77,6 +87,29 @@ void ForceDensitySolver2D::assemble_convective(const Scene& scene, const Averagi
   conv_dx_.setFromTriplets(tx.begin(), tx.end());
   conv_dy_.setFromTriplets(ty.begin(), ty.end());
   fluid_interp_.setFromTriplets(tp.begin(), tp.end());
+  // The node pairs and S (fluid particles × pairs), then T_b = D_b S.
+  std::map<std::pair<int, int>, int> pair_index;
+  std::vector<Eigen::Triplet<double>> ts;
+  const auto add = [&](Eigen::Index k, int j, int l, double w) {
+    const auto key = std::minmax(j, l);
+    const auto [it, fresh] = pair_index.try_emplace({key.first, key.second}, static_cast<int>(pairs_.size()));
+    if (fresh) pairs_.push_back({key.first, key.second});
+    ts.emplace_back(k, it->second, w);
+  };
+  for (Eigen::Index k = 0; k < nf; ++k) {
+    const Interp& ip = interp_[static_cast<std::size_t>(fluid_[static_cast<std::size_t>(k)])];
+    for (int u = 0; u < 4; ++u) {
+      if (ip.weight[u] == 0.0) continue;
+      add(k, ip.node[u], ip.node[u], ip.weight[u] * ip.weight[u]);
+      for (int v = u + 1; v < 4; ++v)
+        if (ip.weight[v] != 0.0)
+          add(k, ip.node[u], ip.node[v], (ip.node[u] == ip.node[v] ? 2.0 : 1.0) * ip.weight[u] * ip.weight[v]);
+    }
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> weights(nf, static_cast<Eigen::Index>(pairs_.size()));
+  weights.setFromTriplets(ts.begin(), ts.end());  // duplicates summed
+  pairs_x_ = (conv_dx_ * weights).pruned();
+  pairs_y_ = (conv_dy_ * weights).pruned();
 }
 
 void ForceDensitySolver2D::convective_rates(const Eigen::VectorXd& rx, const Eigen::VectorXd& ry, Eigen::VectorXd& qx,
@@ -85,10 +118,22 @@ void ForceDensitySolver2D::convective_rates(const Eigen::VectorXd& rx, const Eig
     qx = qy = Eigen::VectorXd::Zero(coarse_.size());
     return;
   }
-  const Eigen::VectorXd vx = fluid_interp_ * rx, vy = fluid_interp_ * ry;
-  const Eigen::VectorXd vxy = vx.cwiseProduct(vy);
-  qx = conv_dx_ * vx.cwiseProduct(vx) + conv_dy_ * vxy;
-  qy = conv_dx_ * vxy + conv_dy_ * vy.cwiseProduct(vy);
+  const auto np = static_cast<Eigen::Index>(pairs_.size());
+  Eigen::VectorXd pxx(np), pxy(np), pyy(np);
+  for (Eigen::Index p = 0; p < np; ++p) {
+    const auto [j, l] = pairs_[static_cast<std::size_t>(p)];
+    if (j == l) {
+      pxx[p] = rx[j] * rx[j];
+      pxy[p] = rx[j] * ry[j];
+      pyy[p] = ry[j] * ry[j];
+    } else {
+      pxx[p] = 2.0 * rx[j] * rx[l];
+      pxy[p] = rx[j] * ry[l] + rx[l] * ry[j];
+      pyy[p] = 2.0 * ry[j] * ry[l];
+    }
+  }
+  qx = pairs_x_ * pxx + pairs_y_ * pxy;
+  qy = pairs_x_ * pxy + pairs_y_ * pyy;
 }
 
 Eigen::MatrixXd ForceDensitySolver2D::to_reconstruction(const Eigen::SparseMatrix<double, Eigen::RowMajor>& d,

@@ -103,6 +103,7 @@ experiments/cylinders/linearised_steady.json results/cylinders/linearised_steady
 experiments/cylinders/reduced_steady_like_for_like.json results/cylinders/reduced_steady_like_for_like
 experiments/cylinders/reduced_tvf.json results/cylinders/reduced_tvf
 experiments/cylinders/reduced_tvf_diagnostics.json results/cylinders/reduced_tvf/diagnostics
+experiments/cylinders/reduced_tvf_marched.json results/cylinders/reduced_tvf_marched
 LIST
 fi
 

@@ -185,6 +185,12 @@ void finish_reduced_row(json& row, json errors, json cost, const RepeatedReduced
   row["errors"] = std::move(errors);
   row["cost"] = std::move(cost);
   propagate_worst_status(row, deconvolution_issues, direct_run);
+  // A run that failed (diverged, gave up) did not compute what the direct run computed: its time is no speed-up.
+  if (row.value("status", "ok") != "ok" && row["cost"].contains("speed_up")) {
+    for (const char* key : {"speed_up", "speed_up_at_median", "speed_up_cpu", "speed_up_cpu_at_median"})
+      if (row["cost"].contains(key)) row["cost"][key] = nullptr;
+    row["cost"]["speed_up_note"] = "none: the reduced run's status is " + row["status"].get<std::string>();
+  }
   add_rule_notes(row);
 }
 

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/base/registry.hpp"
 #include "core/reduced/force_density_2d.hpp"
@@ -81,8 +82,13 @@ TEST(ForceDensityMarch, SteadyStateIsTheSteadySolves) {
     const ModelRun m = run(c, marched, stepper.get());
     ASSERT_EQ(m.result.status, Status::converged) << m.result.message;
     const double peak = std::max(max_abs(steady.vx), max_abs(steady.vy));
-    EXPECT_LT(max_abs(m.vx - steady.vx) / peak, 1e-6) << m.result.steps << " steps";
-    EXPECT_LT(max_abs(m.vy - steady.vy) / peak, 1e-6);
+    // The steady test stops at a change below 1e-9 over the window, which leaves the state within 1e-9 / (1 − e^{−w/τ})
+    // of steady (core/base/time_loop.hpp), w/τ unknown here: 1e-8 allows a factor 10; measured 4.3e-11.
+    EXPECT_LT(max_abs(m.vx - steady.vx) / peak, 1e-8) << m.result.steps << " steps";
+    EXPECT_LT(max_abs(m.vy - steady.vy) / peak, 1e-8);
+    std::printf("%s: marched against the steady solve %.2e (x), %.2e (y) of the peak, %lld steps\n",
+                convective ? "convective" : "linear", max_abs(m.vx - steady.vx) / peak,
+                max_abs(m.vy - steady.vy) / peak, static_cast<long long>(m.result.steps));
   }
 }
 
@@ -96,7 +102,11 @@ TEST(ForceDensityMarch, ImexSplitGivesTheExplicitTransient) {
   const ModelRun a = run(c, solver, erk.get()), b = run(c, solver, imex.get());
   ASSERT_EQ(a.result.status, Status::target_time) << a.result.message;
   ASSERT_EQ(b.result.status, Status::target_time) << b.result.message;
+  // Both integrators' local errors at rtol 1e-10, accumulated over the 200 loop steps: 1e-8; measured 4.4e-12 (a split
+  // that dropped or doubled a part would differ by that part's whole effect).
   const double peak = max_abs(a.vx);
-  EXPECT_LT(max_abs(a.vx - b.vx) / peak, 1e-6);
-  EXPECT_LT(max_abs(a.vy - b.vy) / peak, 1e-6);
+  EXPECT_LT(max_abs(a.vx - b.vx) / peak, 1e-8);
+  EXPECT_LT(max_abs(a.vy - b.vy) / peak, 1e-8);
+  std::printf("imex against erk: %.2e (x), %.2e (y) of the peak\n", max_abs(a.vx - b.vx) / peak,
+              max_abs(a.vy - b.vy) / peak);
 }

@@ -19,28 +19,27 @@ namespace {
 
 bool is_held(const CoarseRate& f, Eigen::Index k) { return f.held && (*f.held)[static_cast<std::size_t>(k)]; }
 
-// The rate is affine for a closure with fixed parameters, f(u) = c + J (u − b) over the free entries (held entries at
-// their values). Probed with unit vectors from b (zero, held entries held); a probe at a second point checks the
-// affinity (a parameter rule or an iteration stopped by a tolerance breaks it): false with `issue` empty then.
-bool probe_affine_rate(const CoarseRate& f, Eigen::Index n, Eigen::MatrixXd& jacobian, Eigen::VectorXd& offset,
-                       Eigen::VectorXd& base, std::string& issue) {
+}  // namespace
+
+bool probe_affine(const RateFunction& fn, const CoarseRate& f, Eigen::Index n, Eigen::MatrixXd& jacobian,
+                  Eigen::VectorXd& offset, Eigen::VectorXd& base, std::string& issue) {
   std::vector<Eigen::Index> free;
   for (Eigen::Index k = 0; k < n; ++k)
     if (!is_held(f, k)) free.push_back(k);
   base = Eigen::VectorXd::Zero(n);
   hold_entries(f, base);
   Eigen::VectorXd r0, r;
-  if (!f.at(base, r0, issue)) return false;
+  if (!fn(base, r0, issue)) return false;
   jacobian = Eigen::MatrixXd::Zero(n, n);
   for (Eigen::Index k : free) {
     Eigen::VectorXd u = base;
     u[k] = 1.0;
-    if (!f.at(u, r, issue)) return false;
+    if (!fn(u, r, issue)) return false;
     jacobian.col(k) = r - r0;
   }
   Eigen::VectorXd test = base;
   for (Eigen::Index k : free) test[k] = std::sin(1.0 + 3.7 * static_cast<double>(k));
-  if (!f.at(test, r, issue)) return false;
+  if (!fn(test, r, issue)) return false;
   const Eigen::VectorXd predicted = r0 + jacobian * (test - base);
   const double scale = std::max(r.cwiseAbs().maxCoeff(), 1e-300);
   if ((predicted - r).cwiseAbs().maxCoeff() > 1e-8 * scale) {
@@ -49,6 +48,13 @@ bool probe_affine_rate(const CoarseRate& f, Eigen::Index n, Eigen::MatrixXd& jac
   }
   offset = std::move(r0);
   return true;
+}
+
+namespace {
+
+bool probe_affine_rate(const CoarseRate& f, Eigen::Index n, Eigen::MatrixXd& jacobian, Eigen::VectorXd& offset,
+                       Eigen::VectorXd& base, std::string& issue) {
+  return probe_affine(f.at, f, n, jacobian, offset, base, issue);
 }
 
 class ExplicitEuler : public Integrator {

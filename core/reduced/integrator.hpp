@@ -15,8 +15,10 @@
 //                   time at t + dt), or method forward_euler: one stage at the fixed step dt (the explicit step
 //                   through ARKODE);
 //   arkode_imex     SUNDIALS ARKODE ARKStep: additive Runge–Kutta with error control, the rate's `stiff` part
-//                   implicit (Newton, matrix-free GMRES with difference-quotient J·v), the rest explicit; a model
-//                   that offers no split is integrated implicitly whole (the pair's DIRK table).
+//                   implicit (Newton; its systems by matrix-free GMRES with difference-quotient J·v, or, with
+//                   linear_solver dense, by Eigen's LU of I − γJ, J the implicit part's Jacobian probed once: an
+//                   affine implicit part, a closure with fixed parameters), the rest explicit; a model that offers
+//                   no split is integrated implicitly whole (the pair's DIRK table).
 // The ARKODE ones hold the held entries at rate zero during the step and reset them after it, as `explicit` does;
 // they need no affine rate. Parameters (a spec's time_integration {"name": ..., ...}) are each entry's schema.
 // An instance serves one model (backward Euler keeps the Jacobian it probed on its first step; an ARKODE one its
@@ -31,19 +33,22 @@
 
 namespace closurelab {
 
+// du/dt (or a part of it) at u; false on a numerical issue, said in `issue`.
+using RateFunction = std::function<bool(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue)>;
+
 // What a model offers an integrator.
 struct CoarseRate {
-  // du/dt at u; false on a numerical issue, said in `issue`.
-  std::function<bool(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue)> at;
+  // du/dt at u.
+  RateFunction at;
   // The entries a step leaves at their held values (null: none is held).
   const std::vector<bool>* held = nullptr;
   const Eigen::VectorXd* held_values = nullptr;
   // Optional, for an IMEX integrator (arkode_imex): the part of the rate treated implicitly (the stiff, viscous
   // part), same signature as `at`. Null: no split (arkode_imex then treats the whole rate implicitly).
-  std::function<bool(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue)> stiff{};
+  RateFunction stiff{};
   // Optional with `stiff`: the explicit part, at − stiff, when the model computes it apart (null: at − stiff,
   // one call of each).
-  std::function<bool(const Eigen::VectorXd& u, Eigen::VectorXd& dudt, std::string& issue)> nonstiff{};
+  RateFunction nonstiff{};
 };
 
 // What a steady solve (Integrator::steady_state) did.
@@ -61,6 +66,10 @@ class Integrator {
   // Whether the integrator is right only for a rate affine in u (a closure linear in the coarse velocity: fixed
   // parameters, no Krylov iterate); such a spec is checked at validation (check_implicit_closure).
   virtual bool needs_affine_rate() const { return false; }
+  // Whether it is right only for a closure linear in the coarse state (checked at validation as needs_affine_rate
+  // is): an integrator that needs an affine rate, or one that probes the Jacobian of the implicit part alone
+  // (arkode_imex with linear_solver dense), which leaves the explicit part free to be nonlinear.
+  virtual bool needs_linear_closure() const { return needs_affine_rate(); }
   // The model's rate or held entries changed (e.g. oracles switched on): forget what was learned of them.
   virtual void reset() {}
   // Whether it finds the steady state itself (steady_state) rather than stepping: a model in mode steady then calls
@@ -74,6 +83,13 @@ class Integrator {
 
 // The held entries of u set to their values.
 void hold_entries(const CoarseRate& f, Eigen::VectorXd& u);
+
+// Probes fn (f's rate or a part of it) as an affine map, fn(u) = offset + J (u − base) over f's free entries: unit
+// vectors from base (zero, held entries held), the affinity checked at a second point (within 1e-8 of the rate's
+// peak). False with `issue` empty when fn is not affine (a parameter rule, an iteration stopped by a tolerance, a
+// nonlinear term), with the model's issue when an evaluation failed. Columns of held entries are zero.
+bool probe_affine(const RateFunction& fn, const CoarseRate& f, Eigen::Index n, Eigen::MatrixXd& jacobian,
+                  Eigen::VectorXd& offset, Eigen::VectorXd& base, std::string& issue);
 
 // Adds the built-in integrators to r.integrators (the ARKODE ones by register_arkode_integrators).
 void register_integrators(Registry& r);

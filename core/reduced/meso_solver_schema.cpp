@@ -88,7 +88,7 @@ void check_implicit_closure(const json& solver, const Integrator& integrator, co
     throw ConfigError(path + "/solver/time_integration",
                       integrator_name(solver) + " finds the steady state and takes no time step: set mode to steady, "
                                                 "or use a stepping integrator");
-  if (!integrator.needs_affine_rate()) return;
+  if (!integrator.needs_linear_closure()) return;
   // An integrator for an affine rate (backward Euler's Jacobian, probed once) is right only when the closure is
   // linear in v̄. A parameter rule is served by the two-pass rule (core/reduced/closure_rule.hpp: the parameter
   // chosen once from the steady state at the configured fixed one, then fixed); a Krylov method's iterate is not
@@ -98,7 +98,8 @@ void check_implicit_closure(const json& solver, const Integrator& integrator, co
     throw ConfigError(path + "/solver/time_integration",
                       integrator_name(solver) + " needs a closure linear in the coarse velocity (landweber, landweber_relaxed, "
                       "tikhonov or tsvd, a rule chosen by the two-pass rule); " + closure_nonlinearity(deconvolver) +
-                          " (/closure/deconvolver); use time_integration explicit");
+                          " (/closure/deconvolver); use an integrator that probes no Jacobian (explicit, arkode_erk, "
+                          "arkode_imex with linear_solver gmres)");
 }
 
 void check_meso_run(const Scene& scene, const AveragingKernel& kernel, const json& solver, const MesoSolverOptions& o,

@@ -115,7 +115,7 @@ class ReducedModel : public ExperimentKind {
       // k is used with rule fixed, and as pass 1 of the two-pass rule (a rule under an implicit integrator).
       const json& deconvolver = out["closure"]["deconvolver"];
       const bool fixed = deconvolver.value("rule", "fixed") == "fixed";
-      if (fixed || make_integrator(reg, out["solver"], path)->needs_affine_rate())
+      if (fixed || make_integrator(reg, out["solver"], path)->needs_linear_closure())
         check_truncation_rank(deconvolver, rows, cols,
                               "data x unknowns of the " + out["closure"]["discretization"].get<std::string>() +
                                   " discretization",
@@ -172,7 +172,7 @@ class ReducedModel : public ExperimentKind {
     // The two-pass rule (core/reduced/closure_rule.hpp): backward Euler needs a closure linear in v̄, so a
     // parameter rule under it is chosen once from pass 1's steady data and fixed for pass 2.
     ClosureParameterRule rule(reg, cfg.at("closure").at("deconvolver"),
-                              make_integrator(reg, cfg.at("solver"), "")->needs_affine_rate(), opt.noise_level);
+                              make_integrator(reg, cfg.at("solver"), "")->needs_linear_closure(), opt.noise_level);
     // The column model and the strategies it holds by reference, built for one pass.
     struct ColumnModel {
       std::unique_ptr<Deconvolver> deconvolver;

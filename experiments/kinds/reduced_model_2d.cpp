@@ -119,7 +119,7 @@ class ReducedModel2D : public ExperimentKind {
       // The two-pass rule chooses a parameter from a steady state (core/reduced/closure_rule.hpp); the stepped 2D
       // model's runs are transients, so it runs none, and a rule under an integrator that probes the rate's
       // Jacobian once would be applied at every solve of a closure taken as linear.
-      if (ClosureParameterRule::applies(out["closure"]["deconvolver"], integrator->needs_affine_rate()))
+      if (ClosureParameterRule::applies(out["closure"]["deconvolver"], integrator->needs_linear_closure()))
         throw ConfigError(path + "/closure/deconvolver/rule",
                           integrator_name(s) + " needs a closure linear in the coarse velocity, and the 2D stepped "
                                                "model runs no two-pass rule (a transient has no steady state to "

@@ -83,7 +83,7 @@ class ReducedModelForceDensity2D : public ExperimentKind {
                                                  "steady, or march to a target time with a stepping integrator "
                                                  "(arkode_erk, arkode_imex, explicit, backward_euler)");
       if (marched) check_implicit_closure(s, *integrator, deconvolver, path);
-      if (marched && ClosureParameterRule::applies(deconvolver, integrator->needs_affine_rate()))
+      if (marched && ClosureParameterRule::applies(deconvolver, integrator->needs_linear_closure()))
         throw ConfigError(path + "/closure/deconvolver/rule",
                           integrator_name(s) + " needs a closure linear in the coarse state, and a marched run has "
                                                "no two-pass rule (it chooses from the steady state of the steady "

@@ -112,6 +112,12 @@ json upgraded_reduced_params(json params) {
     params["timing"]["min_seconds"] = 0.0;
   if (params.contains("reference") && params["reference"].is_object() && params["reference"].contains("solver"))
     params["reference"]["solver"] = upgraded_sph_solver_params(params["reference"]["solver"]);
+  // arkode_imex rows stored before its linear_solver existed ran GMRES.
+  if (params.contains("solver") && params["solver"].is_object() && params["solver"].contains("time_integration")) {
+    json& ti = params["solver"]["time_integration"];
+    if (ti.is_object() && ti.value("name", "") == "arkode_imex" && !ti.contains("linear_solver"))
+      ti["linear_solver"] = "gmres";
+  }
   return params;
 }
 

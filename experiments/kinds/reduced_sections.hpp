@@ -48,7 +48,8 @@ json resolve_transient(const json& cell, const std::string& path);
 std::vector<double> transient_times(const json& transient, const Scene& scene);
 // What the reduced kinds' upgraded_params add to ExperimentKind::upgraded_params (the scene's and the strategies'
 // upgrades, which they apply first): transient.t_star renamed t_over_tau; timing.min_seconds, added since, set to
-// 0, as those rows were timed; the reference's direct solver its formulation (upgraded_sph_solver_params).
+// 0, as those rows were timed; the reference's direct solver its formulation (upgraded_sph_solver_params); an
+// arkode_imex time_integration its linear_solver (gmres, as they ran).
 json upgraded_reduced_params(json params);
 
 // A deconvolver that needs a square operator (the Landweber series without a lift, Tikhonov's paper form) with a
